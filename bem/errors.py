@@ -1,0 +1,47 @@
+"""The project's exceptions, in one place.
+
+They live in `bem` (which imports nothing of ours) so that every layer can raise and catch them.
+Messages name the parameter, the value, and what is allowed.
+"""
+
+
+class RollcontactError(Exception):
+    """Base class of every error rollcontact raises on purpose."""
+
+
+class InputError(RollcontactError, ValueError):
+    """A parameter is out of its allowed range or inconsistent with another one."""
+
+
+class SceneError(InputError):
+    """A scene file or a `--set` override is malformed: unknown key, wrong type, out of range."""
+
+
+class ConvergenceError(RollcontactError, RuntimeError):
+    """An iterative solver did not reach its stated tolerance within its iteration budget.
+
+    Attributes: `solver` (name), `iterations`, `residual`, `tol`, and `regime` (a short description of
+    the physical situation, e.g. 'f_t = 0.999, stick zone 2 elements'), all optional.
+    """
+
+    def __init__(self, message, *, solver=None, iterations=None, residual=None, tol=None, regime=None):
+        parts = [message]
+        if solver is not None:
+            parts.append(f"solver={solver}")
+        if iterations is not None:
+            parts.append(f"iterations={iterations}")
+        if residual is not None and tol is not None:
+            parts.append(f"residual={residual:.3e} > tol={tol:.1e}")
+        if regime:
+            parts.append(f"regime: {regime}")
+        super().__init__("; ".join(parts))
+        self.solver, self.iterations, self.residual, self.tol, self.regime = (
+            solver, iterations, residual, tol, regime)
+
+
+class GrossSlidingError(RollcontactError, RuntimeError):
+    """The tangential load exceeds the friction capacity mu*Fn: no static equilibrium exists."""
+
+
+class ContactEdgeError(RollcontactError, RuntimeError):
+    """The contact area reached the edge of the computational grid: the grid is too small."""

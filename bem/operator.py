@@ -1,0 +1,254 @@
+"""Half-space convolution operator: influence coefficients applied by zero-padded FFT (theory.md §3).
+
+The displacement fields produced by piecewise-constant tractions on a `Grid` are aperiodic 2-D
+convolutions with the element influence coefficients (`bem.influence`). They are evaluated exactly by
+circular convolution on a padded domain of at least (2*ny - 1) x (2*nx - 1) cells (DC-FFT, Liu, Wang &
+Liu 2000). Kernel spectra and pyfftw plans are built once per operator and reused; work buffers are
+preallocated, so a product allocates only its output (or nothing, when `out=` is given).
+
+Fields are arrays of shape (ny, nx): pressure p and tractions tau_x, tau_y in MPa, displacements in mm
+(theory.md §0 conventions: u_z positive into the bodies, (u_x, u_y) substrate relative to sphere).
+"""
+import os
+import pickle
+import threading
+from pathlib import Path
+
+import numpy as np
+import pyfftw
+from scipy.fft import next_fast_len
+
+from .errors import InputError
+from .grid import Grid
+from .influence import influence_coefficients
+from .materials import MaterialPair
+
+#: |beta| below which the normal-tangential coupling is dropped in 'auto' mode. At the seed's
+#: steel-on-rubber pair (beta = 7e-6) the coupling displacements are < 1e-5 of the direct ones,
+#: far below any accuracy the discretisation offers (theory.md §1).
+COUPLING_THRESHOLD = 1e-4
+
+#: Relative floor on the eigenvalues of the periodic kernel symbol when it is inverted.
+PRECONDITIONER_FLOOR = 1e-3
+
+_wisdom_lock = threading.Lock()
+
+
+def _wisdom_file() -> Path:
+    root = os.environ.get("ROLLCONTACT_CACHE") or os.path.join(
+        os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "rollcontact")
+    return Path(root) / "fftw-wisdom.pkl"
+
+
+def _load_wisdom():
+    try:
+        with open(_wisdom_file(), "rb") as fh:
+            pyfftw.import_wisdom(pickle.load(fh))
+    except (OSError, pickle.UnpicklingError, EOFError, TypeError, ValueError):
+        pass
+
+
+def _save_wisdom():
+    path = _wisdom_file()
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        with open(tmp, "wb") as fh:
+            pickle.dump(pyfftw.export_wisdom(), fh)
+        os.replace(tmp, path)
+    except OSError:
+        pass  # a read-only home only costs planning time
+
+
+class _FFTPair:
+    """Forward r2c and backward c2r plans for a batch of `k` padded fields, with their buffers."""
+
+    def __init__(self, k, padded, threads, planner):
+        py, px = padded
+        self.real_in = pyfftw.zeros_aligned((k, py, px), dtype=np.float64)
+        self.spec = pyfftw.empty_aligned((k, py, px // 2 + 1), dtype=np.complex128)
+        self.spec_out = pyfftw.empty_aligned((k, py, px // 2 + 1), dtype=np.complex128)
+        self.real_out = pyfftw.empty_aligned((k, py, px), dtype=np.float64)
+        flags = (planner,)
+        self.forward = pyfftw.FFTW(self.real_in, self.spec, axes=(-2, -1), direction="FFTW_FORWARD",
+                                   flags=flags, threads=threads)
+        self.backward = pyfftw.FFTW(self.spec_out, self.real_out, axes=(-2, -1),
+                                    direction="FFTW_BACKWARD",
+                                    flags=flags + ("FFTW_DESTROY_INPUT",), threads=threads)
+        self.real_in[...] = 0.0  # planning with FFTW_MEASURE may have scribbled on the buffer
+
+
+class HalfSpaceOperator:
+    """Influence operators of a material pair on a grid, applied by FFT.
+
+    Parameters
+    ----------
+    grid : Grid
+    materials : MaterialPair
+    threads : FFTW threads (default 1).
+    coupling : 'auto' (on when |beta| > COUPLING_THRESHOLD), True or False.
+    planner : FFTW planner flag; plans are cached on disk as FFTW wisdom (ROLLCONTACT_CACHE or
+        ~/.cache/rollcontact), so the measuring cost is paid once per grid size and machine.
+    """
+
+    def __init__(self, grid: Grid, materials: MaterialPair, *, threads: int = 1, coupling="auto",
+                 planner: str = "FFTW_MEASURE"):
+        if int(threads) < 1:
+            raise InputError(f"solver.threads = {threads!r}: must be an integer >= 1")
+        if coupling not in ("auto", True, False):
+            raise InputError(f"coupling = {coupling!r}: allowed values are 'auto', True, False")
+        self.grid = grid
+        self.materials = materials
+        self.threads = int(threads)
+        self.coupled = (abs(materials.beta) > COUPLING_THRESHOLD) if coupling == "auto" else bool(coupling)
+        ny, nx = grid.shape
+        self.padded = (next_fast_len(2 * ny - 1, real=True), next_fast_len(2 * nx - 1, real=True))
+        comps = ("zz", "xx", "yy", "xy") + (("xz", "yz") if self.coupled else ())
+        kernels = self._kernels(comps)
+        self.self_coefficients = {c: float(k[0, 0]) for c, k in kernels.items()}
+        with _wisdom_lock:
+            _load_wisdom()
+            self._fft = {k: _FFTPair(k, self.padded, self.threads, planner) for k in (1, 2, 3)}
+            _save_wisdom()
+        scale = 1.0 / (self.padded[0] * self.padded[1])  # c2r is unnormalised: fold 1/N into spectra
+        self.spectra = {}
+        f1 = self._fft[1]
+        for c, kw in kernels.items():
+            f1.real_in[0] = kw
+            f1.forward.execute()
+            self.spectra[c] = f1.spec[0].copy() * scale
+        f1.real_in[...] = 0.0
+        self._build_inverses(planner)
+
+    # --- construction ----------------------------------------------------------------------------
+    def _kernels(self, comps):
+        """Wrapped kernels on the padded domain: Kw[oy mod Py, ox mod Px] = A(ox dx, oy dy)."""
+        g, m = self.grid, self.materials
+        ny, nx = g.shape
+        py, px = self.padded
+        ox = np.arange(-(nx - 1), nx)
+        oy = np.arange(-(ny - 1), ny)
+        X, Y = np.meshgrid(ox * g.dx, oy * g.dy)
+        coeffs = influence_coefficients(X, Y, g.dx, g.dy, m.G, m.nu, m.K, components=comps)
+        rows, cols = np.ix_(oy % py, ox % px)
+        out = {}
+        for c, a in coeffs.items():
+            kw = np.zeros((py, px))
+            kw[rows, cols] = a
+            out[c] = kw
+        return out
+
+    def _build_inverses(self, planner):
+        """Strang-circulant approximate inverses on the unpadded grid, used as preconditioners.
+
+        The Toeplitz operators of the grid are approximated by circulants of (about) the grid's own size
+        whose kernel is the influence coefficient at the nearest periodic offset (Strang's choice); the
+        circulant is inverted exactly in Fourier space. Working on the unpadded grid costs a quarter of
+        a padded convolution, so a preconditioned CG iteration costs about 1.25 convolution pairs
+        (theory.md §4.3, §5.4). The zz, xx, yy kernels are even and xy is odd in X and in Y, so all four
+        symbols are real. The symbol's eigenvalues are floored at PRECONDITIONER_FLOOR of their maximum
+        (a truncated 1/r kernel is not always positive definite at the highest frequencies).
+        """
+        g, m = self.grid, self.materials
+        ny, nx = g.shape
+        sy, sx = next_fast_len(ny, real=True), next_fast_len(nx, real=True)
+        self.small = (sy, sx)
+        ox = np.arange(sx) - sx * (np.arange(sx) > sx // 2)
+        oy = np.arange(sy) - sy * (np.arange(sy) > sy // 2)
+        X, Y = np.meshgrid(ox * g.dx, oy * g.dy)
+        k = influence_coefficients(X, Y, g.dx, g.dy, m.G, m.nu, m.K, components=("zz", "xx", "yy", "xy"))
+        if sx % 2 == 0:
+            k["xy"][:, sx // 2] = 0.0  # odd kernel at the Nyquist offset: no consistent sign
+        if sy % 2 == 0:
+            k["xy"][sy // 2, :] = 0.0
+        s = {c: np.fft.rfft2(v).real for c, v in k.items()}
+        zz = np.maximum(s["zz"], PRECONDITIONER_FLOOR * s["zz"].max())
+        block = np.stack([np.stack([s["xx"], s["xy"]], -1), np.stack([s["xy"], s["yy"]], -1)], -2)
+        lam, vec = np.linalg.eigh(block)
+        lam = np.maximum(lam, PRECONDITIONER_FLOOR * lam.max())
+        inv = np.einsum("...ik,...k,...jk->...ij", vec, 1.0 / lam, vec)
+        scale = 1.0 / (sy * sx)  # c2r is unnormalised
+        self.inverse_spectra = {"zz": scale / zz, "xx": scale * inv[..., 0, 0],
+                                "yy": scale * inv[..., 1, 1], "xy": scale * inv[..., 0, 1]}
+        with _wisdom_lock:
+            self._fft_small = {kk: _FFTPair(kk, self.small, self.threads, planner) for kk in (1, 2)}
+            _save_wisdom()
+
+    # --- application -----------------------------------------------------------------------------
+    def _apply(self, fields, blocks, out, ffts=None):
+        """out[m] = sum_k conv(blocks[m][k], fields[k]); blocks hold spectra (or None for zero)."""
+        ffts = self._fft if ffts is None else ffts
+        k, m = len(fields), len(blocks)
+        ny, nx = self.grid.shape
+        fin = ffts[k]
+        for i, f in enumerate(fields):
+            fin.real_in[i, :ny, :nx] = f
+        fin.forward.execute()
+        fout = ffts[m]
+        for j, row in enumerate(blocks):
+            acc = fout.spec_out[j]
+            first = True
+            for i, spec in enumerate(row):
+                if spec is None:
+                    continue
+                if first:
+                    np.multiply(spec, fin.spec[i], out=acc)
+                    first = False
+                else:
+                    acc += spec * fin.spec[i]
+            if first:
+                acc[...] = 0.0
+        fout.backward.execute()
+        if out is None:
+            out = np.empty((m, ny, nx))
+        out[...] = fout.real_out[:m, :ny, :nx]
+        return out
+
+    def normal(self, pressure, out=None):
+        """u_z (mm) from the pressure field p (MPa): the w = A^zz p product."""
+        res = self._apply((pressure,), ((self.spectra["zz"],),), None if out is None else out[None])
+        return res[0]
+
+    def tangential(self, tau_x, tau_y, out=None):
+        """(u_x, u_y) (mm), shape (2, ny, nx), from the tractions tau_x, tau_y (MPa)."""
+        s = self.spectra
+        return self._apply((tau_x, tau_y), ((s["xx"], s["xy"]), (s["xy"], s["yy"])), out)
+
+    def tangential_from_pressure(self, pressure, out=None):
+        """Coupling: (u_x, u_y) (mm) caused by the pressure p (MPa); zeros when uncoupled."""
+        if not self.coupled:
+            res = np.zeros((2,) + self.grid.shape) if out is None else out
+            res[...] = 0.0
+            return res
+        s = self.spectra
+        return self._apply((pressure,), ((s["xz"],), (s["yz"],)), out)
+
+    def normal_from_tangential(self, tau_x, tau_y, out=None):
+        """Coupling: u_z (mm) caused by the tractions (MPa): zx = -xz, zy = -yz; zeros when uncoupled."""
+        if not self.coupled:
+            res = np.zeros(self.grid.shape) if out is None else out
+            res[...] = 0.0
+            return res
+        s = self.spectra
+        res = self._apply((tau_x, tau_y), ((-s["xz"], -s["yz"]),), None if out is None else out[None])
+        return res[0]
+
+    def normal_inverse(self, residual, out=None):
+        """Approximate (A^zz)^-1 r by the Strang-circulant inverse (a preconditioner, not an exact solve)."""
+        res = self._apply((residual,), ((self.inverse_spectra["zz"],),), None if out is None else out[None],
+                          self._fft_small)
+        return res[0]
+
+    def tangential_inverse(self, res_x, res_y, out=None):
+        """Approximate inverse of the 2x2-block tangential operator (preconditioner), shape (2, ny, nx)."""
+        s = self.inverse_spectra
+        return self._apply((res_x, res_y), ((s["xx"], s["xy"]), (s["xy"], s["yy"])), out, self._fft_small)
+
+    # --- small-grid reference --------------------------------------------------------------------
+    def dense(self, component: str) -> np.ndarray:
+        """Dense (N x N) matrix of one component, N = nx*ny, row-major over (j, i). For tests only."""
+        g, m = self.grid, self.materials
+        X, Y = g.mesh()
+        dX = X.ravel()[:, None] - X.ravel()[None, :]
+        dY = Y.ravel()[:, None] - Y.ravel()[None, :]
+        return influence_coefficients(dX, dY, g.dx, g.dy, m.G, m.nu, m.K, components=(component,))[component]

@@ -1,0 +1,1 @@
+"""Scenes (TOML <-> dataclasses), runs, sweeps, HDF5 I/O, plots and the command line."""

@@ -1,0 +1,99 @@
+"""Closed-form reference solutions (theory.md §7), used by tests, benchmarks and run summaries.
+
+Units mm, N, MPa. Material constants come from `bem.materials.MaterialPair` (E*, G*).
+"""
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+from bem.errors import InputError
+
+
+@dataclass(frozen=True)
+class HertzSphere:
+    """Hertz contact of a sphere (radius R, mm) on a flat with contact modulus E* (MPa) under Fn (N)."""
+
+    R: float
+    E_star: float
+    Fn: float
+
+    @property
+    def a(self) -> float:
+        """Contact radius (mm): (3 Fn R / (4 E*))^(1/3)."""
+        return (3.0 * self.Fn * self.R / (4.0 * self.E_star)) ** (1.0 / 3.0)
+
+    @property
+    def approach(self) -> float:
+        """Approach d = a^2/R (mm)."""
+        return self.a ** 2 / self.R
+
+    @property
+    def p0(self) -> float:
+        """Peak pressure 3 Fn/(2 pi a^2) (MPa)."""
+        return 1.5 * self.Fn / (math.pi * self.a ** 2)
+
+    def pressure(self, r):
+        """p(r) = p0 sqrt(1 - r^2/a^2) inside, 0 outside (MPa)."""
+        r = np.asarray(r, dtype=float)
+        return self.p0 * np.sqrt(np.clip(1.0 - (r / self.a) ** 2, 0.0, None))
+
+    def displacement(self, r):
+        """Total normal surface displacement w(r) of both bodies (mm), inside and outside the contact."""
+        r = np.asarray(r, dtype=float)
+        a, R = self.a, self.R
+        out = self.approach - r ** 2 / (2.0 * R)
+        rr = np.maximum(r, a)
+        outside = ((2 * a ** 2 - rr ** 2) * np.arcsin(a / rr) + a * np.sqrt(rr ** 2 - a ** 2)) / (math.pi * R)
+        return np.where(r <= a, out, outside)
+
+
+def _check_ft(f_t):
+    if not (0.0 <= f_t <= 1.0):
+        raise InputError(f"f_t = Ft/(mu Fn) = {f_t!r}: allowed range is 0 <= f_t <= 1")
+
+
+@dataclass(frozen=True)
+class CattaneoMindlin:
+    """Cattaneo-Mindlin partial slip of a Hertz sphere under a monotonically increasing Ft (theory §7.2).
+
+    Exact for nu = 0 and beta = 0; for nu = 0.5 the shift is within a few 0.1 % (pitfall P10).
+    """
+
+    hertz: HertzSphere
+    mu: float
+    G_star: float
+
+    @property
+    def U0(self) -> float:
+        """Full-slip shift U0 = mu E* d / G* (mm), the normalisation of seed Eq. 9."""
+        return self.mu * self.hertz.E_star * self.hertz.approach / self.G_star
+
+    def stick_radius(self, f_t) -> float:
+        """c = a (1 - f_t)^(1/3) (mm), seed Eq. 5."""
+        _check_ft(f_t)
+        return self.hertz.a * (1.0 - f_t) ** (1.0 / 3.0)
+
+    def shift(self, f_t) -> float:
+        """U_stat = U0 (1 - (1 - f_t)^(2/3)) (mm), seed Eq. 4."""
+        _check_ft(f_t)
+        return self.U0 * (1.0 - (1.0 - f_t) ** (2.0 / 3.0))
+
+    def traction(self, r, f_t):
+        """tau(r) along the force (MPa): mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)]."""
+        r = np.asarray(r, dtype=float)
+        a, c = self.hertz.a, self.stick_radius(f_t)
+        mp0 = self.mu * self.hertz.p0
+        outer = np.sqrt(np.clip(1.0 - (r / a) ** 2, 0.0, None))
+        inner = (c / a) * np.sqrt(np.clip(1.0 - (r / c) ** 2, 0.0, None)) if c > 0 else 0.0 * r
+        return mp0 * (outer - inner)
+
+    def unloading_shift(self, f_t_max, f_t) -> float:
+        """Mindlin-Deresiewicz: shift (mm) after loading to f_t_max and unloading to f_t >= -f_t_max.
+
+        U(f) = U_load(f_max) - 2 U_load((f_max - f)/2)   (Johnson 1985, §7.3).
+        """
+        _check_ft(f_t_max)
+        if not (-f_t_max <= f_t <= f_t_max):
+            raise InputError(f"f_t = {f_t!r}: unloading branch needs -{f_t_max} <= f_t <= {f_t_max}")
+        return self.shift(f_t_max) - 2.0 * self.shift(0.5 * (f_t_max - f_t))
