@@ -1,0 +1,141 @@
+"""HDF5 output of a run, written atomically (temporary file in the same folder, then rename).
+
+Layout (public contract; later versions add to it, never rename):
+
+    /                   attrs: rollcontact_version, scene (full scene as TOML text), status
+                        ('complete' or 'failed'), error (message, when failed)
+    /grid/x, /grid/y    cell-centre coordinates (mm)
+    /history/<name>     one value per step (see README for names and units)
+    /fields/<name>      shape (snapshots, ny, nx); /fields/step says which steps were stored
+    /summary            attrs: run summary (state, u_sd, ...)
+
+A reader that opens a file sees either nothing (no file) or a complete file: the rename is atomic on
+POSIX file systems. A run that fails still writes what it computed, with status = 'failed'.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from importlib import metadata
+import os
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+#: Units of the stored quantities (written as a 'units' attribute on every dataset).
+UNITS = {
+    "step": "-", "period": "-", "approach": "mm", "Fn": "N", "contact_area": "mm^2", "iterations": "-",
+    "residual": "-", "U_x": "mm", "U_y": "mm", "F_x": "N", "F_y": "N", "stick_area": "mm^2",
+    "W_x": "mm", "W_y": "mm", "normal_iterations": "-", "tangential_iterations": "-",
+    "p": "MPa", "u_z": "mm", "tau_x": "MPa", "tau_y": "MPa", "slip_x": "mm", "slip_y": "mm",
+    "u_x": "mm", "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip", "x": "mm", "y": "mm",
+    "wall_time": "s",
+}
+
+
+def version() -> str:
+    try:
+        return metadata.version("rollcontact")
+    except metadata.PackageNotFoundError:
+        return "unknown"
+
+
+@dataclass
+class RunData:
+    """Everything one run file holds, as numpy arrays and plain Python values."""
+
+    scene_toml: str
+    status: str
+    x: np.ndarray
+    y: np.ndarray
+    history: dict = field(default_factory=dict)
+    fields: dict = field(default_factory=dict)
+    field_steps: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    summary: dict = field(default_factory=dict)
+    error: str = ""
+    version: str = ""
+
+
+def write_run(path, data: RunData) -> Path:
+    """Write `data` to `path` atomically; returns the final path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        with h5py.File(tmp, "w") as h5:
+            h5.attrs["rollcontact_version"] = data.version or version()
+            h5.attrs["scene"] = data.scene_toml
+            h5.attrs["status"] = data.status
+            h5.attrs["error"] = data.error
+            grid = h5.create_group("grid")
+            _dataset(grid, "x", data.x)
+            _dataset(grid, "y", data.y)
+            hist = h5.create_group("history")
+            for name, values in data.history.items():
+                _dataset(hist, name, np.asarray(values))
+            flds = h5.create_group("fields")
+            _dataset(flds, "step", np.asarray(data.field_steps, dtype=np.int64))
+            for name, values in data.fields.items():
+                values = np.asarray(values)
+                chunks = (1,) + values.shape[1:] if values.ndim == 3 and values.shape[0] > 0 else None
+                _dataset(flds, name, values, compression="gzip" if chunks else None, chunks=chunks)
+            summ = h5.create_group("summary")
+            for key, value in data.summary.items():
+                summ.attrs[key] = _attr_value(value)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return path
+
+
+def read_run(path) -> RunData:
+    """Read a run file written by `write_run`."""
+    with h5py.File(path, "r") as h5:
+        return RunData(
+            scene_toml=_str(h5.attrs["scene"]),
+            status=_str(h5.attrs["status"]),
+            error=_str(h5.attrs.get("error", "")),
+            version=_str(h5.attrs.get("rollcontact_version", "")),
+            x=h5["grid/x"][()], y=h5["grid/y"][()],
+            history={k: v[()] for k, v in h5["history"].items()},
+            fields={k: v[()] for k, v in h5["fields"].items() if k != "step"},
+            field_steps=h5["fields/step"][()],
+            summary={k: _py(v) for k, v in h5["summary"].attrs.items()},
+        )
+
+
+def is_complete(path) -> bool:
+    """True if `path` is a readable run file with status 'complete' (used to resume sweeps)."""
+    try:
+        with h5py.File(path, "r") as h5:
+            return _str(h5.attrs.get("status", "")) == "complete"
+    except (OSError, KeyError):
+        return False
+
+
+def _dataset(group, name, values, **kwargs):
+    ds = group.create_dataset(name, data=values, **{k: v for k, v in kwargs.items() if v is not None})
+    if name in UNITS:
+        ds.attrs["units"] = UNITS[name]
+    return ds
+
+
+def _attr_value(value):
+    if value is None:
+        return "none"
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    return value
+
+
+def _str(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def _py(v):
+    if isinstance(v, bytes):
+        return v.decode()
+    if isinstance(v, np.generic):
+        return v.item()
+    return v
