@@ -1,0 +1,61 @@
+"""HDF5 run files: layout, units, atomic writes (real files in a temporary folder)."""
+import os
+
+import h5py
+import numpy as np
+import pytest
+
+from cases.hdf5 import RunData, is_complete, read_run, write_run
+
+
+def sample(status="complete"):
+    rng = np.random.default_rng(0)
+    return RunData(scene_toml="[geometry]\nR = 40.0\n", status=status, x=np.arange(4) * 0.2,
+                   y=np.arange(3) * 0.2, history={"step": np.arange(5), "approach": rng.random(5)},
+                   fields={"p": rng.random((2, 3, 4)), "region": np.ones((2, 3, 4), dtype=np.int8)},
+                   field_steps=np.array([0, 4]), summary={"state": "shakedown", "u_sd": 0.5, "x": None})
+
+
+def test_write_then_read_gives_back_every_array_and_attribute(tmp_path):
+    path = write_run(tmp_path / "sub" / "run.h5", sample())
+    back = read_run(path)
+    ref = sample()
+    assert back.status == "complete" and back.scene_toml == ref.scene_toml
+    np.testing.assert_array_equal(back.x, ref.x)
+    np.testing.assert_array_equal(back.history["approach"], ref.history["approach"])
+    np.testing.assert_array_equal(back.fields["p"], ref.fields["p"])
+    assert back.fields["region"].dtype == np.int8
+    np.testing.assert_array_equal(back.field_steps, [0, 4])
+    assert back.summary["state"] == "shakedown" and back.summary["u_sd"] == 0.5
+    assert back.summary["x"] == "none"
+    with h5py.File(path) as h5:
+        assert h5["history/approach"].attrs["units"] == "mm"
+        assert h5["fields/p"].attrs["units"] == "MPa"
+        assert h5["fields/p"].shape == (2, 3, 4)  # (snapshots, ny, nx)
+        assert "rollcontact_version" in h5.attrs
+
+
+def test_write_is_atomic_and_leaves_no_temporary_file(tmp_path):
+    path = tmp_path / "run.h5"
+    write_run(path, sample())
+    assert os.listdir(tmp_path) == ["run.h5"]
+
+
+def test_failed_write_keeps_the_previous_file_intact(tmp_path):
+    path = tmp_path / "run.h5"
+    write_run(path, sample())
+    bad = sample()
+    bad.fields["p"] = object()  # h5py cannot store this: the write fails midway
+    with pytest.raises(Exception):
+        write_run(path, bad)
+    assert is_complete(path) and os.listdir(tmp_path) == ["run.h5"]
+
+
+def test_is_complete_distinguishes_failed_partial_and_garbage_files(tmp_path):
+    write_run(tmp_path / "ok.h5", sample())
+    write_run(tmp_path / "failed.h5", sample(status="failed"))
+    (tmp_path / "garbage.h5").write_bytes(b"not hdf5")
+    assert is_complete(tmp_path / "ok.h5")
+    assert not is_complete(tmp_path / "failed.h5")
+    assert not is_complete(tmp_path / "garbage.h5")
+    assert not is_complete(tmp_path / "missing.h5")

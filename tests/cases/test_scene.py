@@ -1,0 +1,89 @@
+"""Scene files: TOML <-> dataclasses, validation messages, overrides."""
+import math
+
+import pytest
+
+from bem.errors import SceneError
+from cases.scene import Scene, default_scene, shipped_scene_path
+
+
+def test_default_scene_is_the_seed_table1_perpendicular_setting():
+    s = default_scene()
+    m = s.materials
+    assert (m.E1, m.nu1, m.E2, m.nu2) == (206e3, 0.3, 4.35, 0.5)
+    assert s.geometry.R == 40.0 and s.load.Fn == 21.19 and s.load.mu == 0.93
+    assert s.spacing == (0.2, 0.2)
+    assert s.f_t == 0.46 and s.motion.w == 0.23 and s.motion.angle == 90.0
+    assert s.contact_radius == pytest.approx(4.7857, abs=1e-4)  # theory §7.1
+    assert s.rolling_direction == pytest.approx((0.0, 1.0), abs=1e-15)
+
+
+def test_rolling_step_hits_the_reversal_points_exactly():
+    s = default_scene()
+    n = s.amplitude / s.rolling_step
+    assert n == pytest.approx(round(n), abs=1e-12) and s.rolling_step <= s.motion.dW
+
+
+def test_round_trip_through_toml_text_preserves_every_key():
+    s = default_scene().with_overrides(["load.Ft=5.5", "materials.E1=inf", "load.levels=[0.2, -0.3]"])
+    back = Scene.from_toml_text(s.to_toml(), name=s.name)
+    assert back.to_dict() == s.to_dict()
+    assert math.isinf(back.materials.E1) and back.load.Ft == 5.5 and back.load.levels == [0.2, -0.3]
+
+
+def test_a_minimal_file_takes_neutral_defaults(tmp_path):
+    f = tmp_path / "hertz.toml"
+    f.write_text("[geometry]\nR = 10.0\n")
+    s = Scene.from_toml(f)
+    assert s.f_t == 0.0 and s.amplitude == 0.0 and s.name == "hertz"
+
+
+@pytest.mark.parametrize("override, message", [
+    ("load.ft=1.5", r"\[load\] ft = 1.5: allowed range is \[0, 1\]"),
+    ("grid.dx=0", r"\[grid\] dx = 0.0 mm: allowed range is \(0, inf\) mm"),
+    ("motion.dW=-0.2", r"\[motion\] dW = -0.2 mm: allowed range"),
+    ("motion.periods=-1", r"\[motion\] periods = -1: allowed range"),
+    ("load.bogus=1", r"\[load\] unknown key\(s\) \['bogus'\]"),
+    ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr'\]"),
+    ("materials.nu2=0.7", r"\[materials\] nu2 = 0.7: allowed range"),
+    ("load.Fn=\"heavy\"", r"\[load\] Fn = 'heavy': expected a number in N"),
+    ("load.Ft=30", r"exceeds mu\*Fn"),
+    ("noequals", r"expected section.key=value"),
+    ("physics.g=9.81", r"unknown section 'physics'"),
+])
+def test_bad_input_is_refused_naming_key_and_allowed_range(override, message):
+    with pytest.raises(SceneError, match=message):
+        default_scene().with_overrides([override])
+
+
+def test_contradictory_alternatives_are_refused(tmp_path):
+    f = tmp_path / "bad.toml"
+    f.write_text("[geometry]\nR = 10.0\nRx = 5.0\n")
+    with pytest.raises(SceneError, match="either R, or Rx and Ry"):
+        Scene.from_toml(f)
+    f.write_text("[geometry]\nR = 10.0\n[load]\nft = 0.2\nFt = 1.0\n")
+    with pytest.raises(SceneError, match="either ft"):
+        Scene.from_toml(f)
+
+
+def test_override_of_an_alternative_replaces_the_other_spelling():
+    s = default_scene().with_overrides(["motion.W=1.2"])
+    assert s.motion.w is None and s.amplitude == 1.2
+
+
+def test_shipped_scenes_differ_only_in_the_rolling_direction():
+    par = Scene.from_toml(shipped_scene_path("paper_parallel.toml"))
+    perp = Scene.from_toml(shipped_scene_path("paper_perpendicular.toml"))
+    assert par.motion.angle == 0.0 and perp.motion.angle == 90.0
+    d_par, d_perp = par.to_dict(), perp.to_dict()
+    d_par["motion"].pop("angle"), d_perp["motion"].pop("angle")
+    assert d_par == d_perp
+
+
+def test_unreadable_or_invalid_files_give_scene_errors(tmp_path):
+    with pytest.raises(SceneError, match="scene file"):
+        Scene.from_toml(tmp_path / "missing.toml")
+    f = tmp_path / "broken.toml"
+    f.write_text("[load\nFn = 1")
+    with pytest.raises(SceneError, match="not valid TOML"):
+        Scene.from_toml(f)
