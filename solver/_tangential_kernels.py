@@ -1,0 +1,417 @@
+"""Element loops of the tangential solver (`solver.tangential`), compiled with numba (cache=True).
+
+All fields are (ny, nx) or (2, ny, nx) float64 arrays on the grid; `region` is int8 with
+0 = exterior (bound g = 0), 1 = stick (|tau| < g), 2 = slip (|tau| = g). Nothing here allocates a
+grid-sized array; every kernel writes into buffers owned by the caller.
+
+Notation (theory.md §5): w = A(tau - tau') + extra slip (mm), dU the rigid-shift increment (mm),
+s = w - dU the slip of the step, n = tau/|tau| and t = (-n_y, n_x) in slip elements.
+"""
+import math
+
+import numba as nb
+import numpy as np
+
+#: |tau| >= (1 - ON_BOUND) g counts as "on the bound" (slip). Renormalised and clipped elements sit
+#: exactly on the bound, so this only absorbs round-off.
+ON_BOUND = 1e-12
+
+_jit = nb.njit(cache=True, nogil=True, fastmath=False)
+
+
+@_jit
+def classify(tau, g, region):
+    """region from the traction alone: 0 where g = 0, 2 where |tau| is on the bound, else 1."""
+    ny, nx = g.shape
+    n_stick = 0
+    n_slip = 0
+    for j in range(ny):
+        for i in range(nx):
+            gi = g[j, i]
+            if gi <= 0.0:
+                region[j, i] = 0
+                continue
+            m = math.hypot(tau[0, j, i], tau[1, j, i])
+            if m >= (1.0 - ON_BOUND) * gi:
+                region[j, i] = 2
+                n_slip += 1
+            else:
+                region[j, i] = 1
+                n_stick += 1
+    return n_stick, n_slip
+
+
+@_jit
+def project_discs(tau, g):
+    """tau <- radial projection onto |tau_I| <= g_I; zero where g = 0 (in place)."""
+    ny, nx = g.shape
+    for j in range(ny):
+        for i in range(nx):
+            gi = g[j, i]
+            if gi <= 0.0:
+                tau[0, j, i] = 0.0
+                tau[1, j, i] = 0.0
+                continue
+            m = math.hypot(tau[0, j, i], tau[1, j, i])
+            if m > gi:
+                f = gi / m
+                tau[0, j, i] *= f
+                tau[1, j, i] *= f
+
+
+@_jit
+def force_projection_eval(y, g, lx, ly, tau_out):
+    """tau_out = proj_discs(y + lambda); returns (sum tau_x, sum tau_y, J_xx, J_xy, J_yy, psi).
+
+    psi = sum_I h(y_I + lambda) with h(z) = |z|^2/2 - dist(z, disc)^2/2 (a convex C^1 function whose
+    gradient is the projection) and J = sum of the projection Jacobians (theory §5: used to put the
+    starting traction on the force constraint, Euclidean projection onto discs & force).
+    """
+    ny, nx = g.shape
+    sx = 0.0
+    sy = 0.0
+    jxx = 0.0
+    jxy = 0.0
+    jyy = 0.0
+    psi = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            gi = g[j, i]
+            if gi <= 0.0:
+                tau_out[0, j, i] = 0.0
+                tau_out[1, j, i] = 0.0
+                continue
+            zx = y[0, j, i] + lx
+            zy = y[1, j, i] + ly
+            m = math.hypot(zx, zy)
+            if m <= gi:
+                tau_out[0, j, i] = zx
+                tau_out[1, j, i] = zy
+                sx += zx
+                sy += zy
+                jxx += 1.0
+                jyy += 1.0
+                psi += 0.5 * m * m
+            else:
+                nxv = zx / m
+                nyv = zy / m
+                tau_out[0, j, i] = gi * nxv
+                tau_out[1, j, i] = gi * nyv
+                sx += gi * nxv
+                sy += gi * nyv
+                f = gi / m
+                jxx += f * (1.0 - nxv * nxv)
+                jxy += -f * nxv * nyv
+                jyy += f * (1.0 - nyv * nyv)
+                psi += 0.5 * m * m - 0.5 * (m - gi) ** 2
+    return sx, sy, jxx, jxy, jyy, psi
+
+
+@_jit
+def gram_and_fit(tau, g, region, w):
+    """Least-squares shift fit: returns (Gxx, Gxy, Gyy, bx, by).
+
+    G = sum_stick I + sum_slip t t^T is the Gram matrix of the force-constraint vectors restricted to
+    the free directions; b = sum_stick w + sum_slip t (t.w). dU = G^-1 b makes the stick slip and the
+    tangential slip component orthogonal to the constraint (the multiplier of sum tau = F/dA).
+    """
+    ny, nx = g.shape
+    gxx = 0.0
+    gxy = 0.0
+    gyy = 0.0
+    bx = 0.0
+    by = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            r = region[j, i]
+            if r == 1:
+                gxx += 1.0
+                gyy += 1.0
+                bx += w[0, j, i]
+                by += w[1, j, i]
+            elif r == 2:
+                m = math.hypot(tau[0, j, i], tau[1, j, i])
+                tx = -tau[1, j, i] / m
+                ty = tau[0, j, i] / m
+                gxx += tx * tx
+                gxy += tx * ty
+                gyy += ty * ty
+                ws = tx * w[0, j, i] + ty * w[1, j, i]
+                bx += tx * ws
+                by += ty * ws
+    return gxx, gxy, gyy, bx, by
+
+
+@_jit
+def release(tau, g, region, w, dux, duy, tol_abs):
+    """Slip elements whose slip points along the traction (s.n > tol_abs) return to stick."""
+    ny, nx = g.shape
+    n = 0
+    for j in range(ny):
+        for i in range(nx):
+            if region[j, i] == 2:
+                m = math.hypot(tau[0, j, i], tau[1, j, i])
+                sn = ((w[0, j, i] - dux) * tau[0, j, i] + (w[1, j, i] - duy) * tau[1, j, i]) / m
+                if sn > tol_abs:
+                    region[j, i] = 1
+                    n += 1
+    return n
+
+
+@_jit
+def residual(tau, g, region, w, dux, duy, res, kappa, slip):
+    """Projected residual res = -P s (stick: -s; slip: -t (t.s)), curvature kappa = -s.n/g in slip.
+
+    Also writes the slip of the step (s in slip elements, 0 in stick and exterior). Returns
+    (max |res_I| over stick and slip, max positive s.n over slip, res.res).
+    """
+    ny, nx = g.shape
+    rmax = 0.0
+    snmax = 0.0
+    rr = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            r = region[j, i]
+            if r == 0:
+                res[0, j, i] = 0.0
+                res[1, j, i] = 0.0
+                kappa[j, i] = 0.0
+                slip[0, j, i] = 0.0
+                slip[1, j, i] = 0.0
+                continue
+            sx = w[0, j, i] - dux
+            sy = w[1, j, i] - duy
+            if r == 1:
+                res[0, j, i] = -sx
+                res[1, j, i] = -sy
+                kappa[j, i] = 0.0
+                slip[0, j, i] = 0.0
+                slip[1, j, i] = 0.0
+                a = math.hypot(sx, sy)
+            else:
+                m = math.hypot(tau[0, j, i], tau[1, j, i])
+                nxv = tau[0, j, i] / m
+                nyv = tau[1, j, i] / m
+                ts = -nyv * sx + nxv * sy
+                sn = nxv * sx + nyv * sy
+                res[0, j, i] = nyv * ts
+                res[1, j, i] = -nxv * ts
+                kappa[j, i] = max(-sn, 0.0) / g[j, i]
+                slip[0, j, i] = sx
+                slip[1, j, i] = sy
+                a = abs(ts)
+                if sn > snmax:
+                    snmax = sn
+            if a > rmax:
+                rmax = a
+            rr += res[0, j, i] ** 2 + res[1, j, i] ** 2
+    return rmax, snmax, rr
+
+
+@_jit
+def scale_slip(tau, region, kappa, axx, ayy, field):
+    """field <- Q field with Q = 1 in stick and sqrt(a_tt/(a_tt + kappa)) t t^T in slip; 0 outside.
+
+    Used on both sides of the circulant inverse: z = Q P M P Q r is a symmetric positive
+    semi-definite preconditioner of the linearised operator P (A + kappa) P.
+    """
+    ny, nx = region.shape
+    for j in range(ny):
+        for i in range(nx):
+            r = region[j, i]
+            if r == 0:
+                field[0, j, i] = 0.0
+                field[1, j, i] = 0.0
+            elif r == 2:
+                m = math.hypot(tau[0, j, i], tau[1, j, i])
+                tx = -tau[1, j, i] / m
+                ty = tau[0, j, i] / m
+                att = axx * tx * tx + ayy * ty * ty
+                q = math.sqrt(att / (att + kappa[j, i]))
+                ft = q * (tx * field[0, j, i] + ty * field[1, j, i])
+                field[0, j, i] = tx * ft
+                field[1, j, i] = ty * ft
+
+
+@_jit
+def deflate(tau, region, field, gxx, gxy, gyy):
+    """field <- field - C G^-1 C^T field: remove the part that changes the total force (in place).
+
+    C = [P e_x, P e_y] (the force-constraint vectors restricted to the free directions), G = C^T C.
+    `field` must already lie in the free directions (zero outside, tangential in slip).
+    """
+    ny, nx = region.shape
+    cx = 0.0
+    cy = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            if region[j, i] != 0:
+                cx += field[0, j, i]
+                cy += field[1, j, i]
+    det = gxx * gyy - gxy * gxy
+    if det <= 1e-300:
+        return
+    lx = (gyy * cx - gxy * cy) / det
+    ly = (-gxy * cx + gxx * cy) / det
+    for j in range(ny):
+        for i in range(nx):
+            r = region[j, i]
+            if r == 1:
+                field[0, j, i] -= lx
+                field[1, j, i] -= ly
+            elif r == 2:
+                m = math.hypot(tau[0, j, i], tau[1, j, i])
+                tx = -tau[1, j, i] / m
+                ty = tau[0, j, i] / m
+                lt = tx * lx + ty * ly
+                field[0, j, i] -= tx * lt
+                field[1, j, i] -= ty * lt
+
+
+@_jit
+def direction(z, v, q_prev, gamma_num_only, gamma):
+    """v <- z + gamma v (in place); if gamma_num_only, return z.q_prev (for the HS coefficient)."""
+    ny = z.shape[1]
+    nx = z.shape[2]
+    if gamma_num_only:
+        s = 0.0
+        for c in range(2):
+            for j in range(ny):
+                for i in range(nx):
+                    s += z[c, j, i] * q_prev[c, j, i]
+        return s
+    for c in range(2):
+        for j in range(ny):
+            for i in range(nx):
+                v[c, j, i] = z[c, j, i] + gamma * v[c, j, i]
+    return 0.0
+
+
+@_jit
+def curvature_product(tau, region, kappa, v, av, q):
+    """q = P (A v) + kappa v (linearised slip-area operator applied to v); returns (v.q, r-free)."""
+    ny, nx = region.shape
+    vq = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            r = region[j, i]
+            if r == 0:
+                q[0, j, i] = 0.0
+                q[1, j, i] = 0.0
+            elif r == 1:
+                q[0, j, i] = av[0, j, i]
+                q[1, j, i] = av[1, j, i]
+            else:
+                m = math.hypot(tau[0, j, i], tau[1, j, i])
+                tx = -tau[1, j, i] / m
+                ty = tau[0, j, i] / m
+                qt = tx * av[0, j, i] + ty * av[1, j, i] + kappa[j, i] * (tx * v[0, j, i] + ty * v[1, j, i])
+                q[0, j, i] = tx * qt
+                q[1, j, i] = ty * qt
+            vq += v[0, j, i] * q[0, j, i] + v[1, j, i] * q[1, j, i]
+    return vq
+
+
+@_jit
+def dot(a, b):
+    s = 0.0
+    for c in range(a.shape[0]):
+        for j in range(a.shape[1]):
+            for i in range(a.shape[2]):
+                s += a[c, j, i] * b[c, j, i]
+    return s
+
+
+@_jit
+def step(tau, v, alpha, u, av, g, region, axx, ayy):
+    """tau += alpha v, u += alpha A v, then back onto the discs.
+
+    Slip elements are renormalised to |tau| = g (the linearised step moves along the tangent);
+    stick elements that leave their disc are projected radially onto it and become slip. The
+    displacement of these small local corrections is added with the self coefficients only (the
+    caller re-synchronises u = A tau exactly before accepting convergence). Returns
+    (number of stick elements clipped, max |correction| in MPa, sum of corrections x, y).
+    """
+    ny, nx = g.shape
+    n_clip = 0
+    dmax = 0.0
+    dsx = 0.0
+    dsy = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            r = region[j, i]
+            if r == 0:
+                continue
+            u[0, j, i] += alpha * av[0, j, i]
+            u[1, j, i] += alpha * av[1, j, i]
+            tx = tau[0, j, i] + alpha * v[0, j, i]
+            ty = tau[1, j, i] + alpha * v[1, j, i]
+            m = math.hypot(tx, ty)
+            gi = g[j, i]
+            if r == 2 or m > gi:
+                if r == 1:
+                    n_clip += 1
+                    region[j, i] = 2
+                f = gi / m
+                dx = tx * f - tx
+                dy = ty * f - ty
+                tx += dx
+                ty += dy
+                u[0, j, i] += axx * dx
+                u[1, j, i] += ayy * dy
+                dsx += dx
+                dsy += dy
+                d = math.hypot(dx, dy)
+                if d > dmax:
+                    dmax = d
+            tau[0, j, i] = tx
+            tau[1, j, i] = ty
+    return n_clip, dmax, dsx, dsy
+
+
+@_jit
+def shift_stick(tau, region, g, lx, ly, u, axx, ayy):
+    """Add (lx, ly) MPa to every stick element (restores the total force after a projection step).
+
+    Returns the number of stick elements that this pushes out of their disc (they are projected and
+    become slip; the caller repeats the restoration for the small remainder).
+    """
+    ny, nx = region.shape
+    n_out = 0
+    for j in range(ny):
+        for i in range(nx):
+            if region[j, i] == 1:
+                tx = tau[0, j, i] + lx
+                ty = tau[1, j, i] + ly
+                m = math.hypot(tx, ty)
+                if m > g[j, i]:
+                    f = g[j, i] / m
+                    tx *= f
+                    ty *= f
+                    region[j, i] = 2
+                    n_out += 1
+                u[0, j, i] += axx * (tx - tau[0, j, i])
+                u[1, j, i] += ayy * (ty - tau[1, j, i])
+                tau[0, j, i] = tx
+                tau[1, j, i] = ty
+    return n_out
+
+
+@_jit
+def masked_sum(tau, region):
+    sx = 0.0
+    sy = 0.0
+    for j in range(region.shape[0]):
+        for i in range(region.shape[1]):
+            if region[j, i] != 0:
+                sx += tau[0, j, i]
+                sy += tau[1, j, i]
+    return sx, sy
+
+
+def warm_up():
+    """Compile (or load from numba's on-disk cache) every kernel on a tiny problem."""
+    tau = np.zeros((2, 2, 2))
+    g = np.ones((2, 2))
+    region = np.zeros((2, 2), np.int8)
+    classify(tau, g, region)

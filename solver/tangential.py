@@ -1,0 +1,365 @@
+"""Kalker's quasi-static transient ("shift") problem on the world-fixed grid (theory.md §5).
+
+One step n -> n+1. Known: the previous traction tau' (2, ny, nx) in MPa, the traction bound
+g = mu p (ny, nx) in MPa (zero outside the contact). Unknown: the traction tau (zero where g = 0) and the
+rigid-shift increment dU (2,) in mm. With the slip of the step
+
+    s = A (tau - tau') + e - dU                                   (e = extra_slip, e.g. A^tz (p - p'))
+
+Coulomb's law holds per element: stick |tau| <= g with s = 0, slip tau = -g s/|s|, and the total force
+sum tau dA = F (N). Signs (theory §0): tau acts on the substrate; U is the sphere's rigid shift relative
+to the substrate far field, U.F > 0 under a steady load (Cattaneo: U_x > 0 for F along +x).
+
+Method: active-set Newton-CG with deflation ("projected TangCG")
+-------------------------------------------------------------------
+The step is the convex program  min 1/2 (tau - tau')^T A (tau - tau') + e.tau  over the discs
+|tau_I| <= g_I with sum tau = F/dA (dU is the multiplier of the force constraint). We solve it with one
+nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, Vollebregt & Oosterlee
+2015, theory §5.4), with three choices that matter for speed:
+
+* Exact Newton linearisation of the slip area. In a slip element the unknown is the direction of
+  tau = g n; the linearised operator is t^T A t plus the curvature kappa = |s|/g (rotating a traction of
+  fixed length changes its direction). The stick/slip operator K = P (A + kappa) P (P = identity in stick,
+  t t^T in slip) is symmetric positive definite, so CG applies without change inside a fixed division.
+* The force constraint by deflation, as the approach in NormCG (theory §4.3, §5.2 alternative): the
+  iterate always carries exactly the prescribed force; every direction is projected onto
+  sum v = 0 in the free directions; dU is recovered in closed form as the least-squares multiplier
+  (stick slip and tangential slip orthogonal to the constraint vectors). There is no outer Newton loop on
+  dU and no bracketing, so there is nothing to degrade near the traction bound (P12).
+* A symmetric preconditioner z = Q P M P Q r with M the Strang-circulant inverse of the 2x2-block
+  operator (`op.tangential_inverse`) on the unpadded grid and Q = sqrt(a/(a + kappa)) on the slip
+  tangents. It is a good approximate inverse of A in the stick area and on the slip ring alike, which is
+  what keeps the iteration count nearly flat under grid refinement.
+
+After each CG step, stick elements that leave their disc are projected radially onto it and become slip
+(many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
+traction (s.n > 0) are released to stick, slip elements are renormalised to |tau| = g, and the force
+is restored by a uniform shift of the stick tractions; the CG recurrence restarts after any change of
+the division. The projected gradient method (theory §5.5) is simpler but needs thousands of products on
+these problems; Gauss-Seidel (§5.3) is sequential and grows with the grid.
+
+Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner); the
+element loops are numba kernels (`solver._tangential_kernels`) on preallocated buffers. The
+displacement u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation,
+projection) are added with the self coefficients only, and u is recomputed exactly (one extra
+`op.tangential`) after steps that changed the division by projection and always before convergence is
+accepted. `TangentialResult.iterations` counts every `op.tangential` call of the solve (including
+the product A tau' and the re-synchronisations), so it is the honest cost in convolution pairs.
+
+Stopping criterion (`TangentialParams.tol`): with u exactly re-synchronised,
+
+    residual = max_I |r_I| / (a_self * max g)   <  tol
+
+where r_I is the complementarity residual of element I in mm: the slip |s_I| in stick elements, the
+tangential slip |t_I . s_I| (slip not opposite to the traction) in slip elements, and slip elements
+with s.n > 0 are released first; a_self = max(A^xx_II, A^yy_II) is the self coefficient (mm/MPa), so
+the residual is the relative traction error of an element that would correct its slip error alone.
+Force balance and |tau| <= g hold to round-off by construction.
+"""
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+from bem.errors import ConvergenceError, GrossSlidingError, InputError
+from . import _tangential_kernels as K
+
+#: Relative margin below the friction capacity sum g dA: a force within this of the capacity is gross
+#: sliding (the stick zone would be far below one element and the problem has no usable solution).
+CAPACITY_MARGIN = 1e-9
+
+
+@dataclass(frozen=True)
+class TangentialParams:
+    """Tolerances of `solve_tangential`.
+
+    tol: bound on the complementarity residual max_I |r_I| / (a_self max g) (see the module docstring):
+        the slip error of every element, expressed as the traction (relative to the largest bound) that the
+        element's own self coefficient would need to remove it. 1e-8 gives shifts and tractions to about
+        8 digits of the discrete solution.
+    max_iter: budget of `op.tangential` products per solve (ConvergenceError beyond it).
+    """
+
+    tol: float = 1e-8
+    max_iter: int = 500
+
+
+@dataclass
+class TangentialResult:
+    """Solution of one step (units MPa, mm, N; theory.md §5.1)."""
+
+    traction: np.ndarray        # (2, ny, nx) MPa
+    shift_increment: np.ndarray  # (2,) mm, dU of this step (U_new = U_old + dU)
+    force: np.ndarray           # (2,) N, sum tau dA
+    slip: np.ndarray            # (2, ny, nx) mm, slip of this step (0 in stick)
+    displacement: np.ndarray    # (2, ny, nx) mm, u = A tau (+ the coupling part if extra given)
+    region: np.ndarray          # (ny, nx) int8: 0 exterior, 1 stick, 2 slip
+    iterations: int
+    residual: float
+    converged: bool
+
+
+def traction_capacity(bound, grid) -> float:
+    """Largest tangential force (N) the contact can carry: sum g dA with g = mu p the bound (MPa)."""
+    return float(np.sum(bound)) * grid.cell_area
+
+
+def _project_on_force(y, g, f, tau_out, lam0=(0.0, 0.0)):
+    """tau_out = Euclidean projection of y onto {|tau_I| <= g_I} intersected with {sum tau = f}.
+
+    The projection is proj_discs(y + lambda) with lambda (MPa) the root of the monotone 2-D map
+    sum proj_discs(y + lambda) = f, found by Newton on the convex dual with Armijo backtracking.
+    f = F/dA in MPa; requires |f| < sum g.
+    """
+    lx, ly = lam0
+    cap = float(np.sum(g))
+    tol = 1e-13 * cap
+    fx, fy = f
+
+    def phi(sx, sy, psi, lx, ly):
+        return psi - lx * fx - ly * fy
+
+    sx, sy, jxx, jxy, jyy, psi = K.force_projection_eval(y, g, lx, ly, tau_out)
+    for _ in range(200):
+        rx, ry = sx - fx, sy - fy
+        if math.hypot(rx, ry) <= tol:
+            return lx, ly
+        reg = 1e-12 * (jxx + jyy) + 1e-300
+        a, b, d = jxx + reg, jxy, jyy + reg
+        det = a * d - b * b
+        if det <= 0.0 or not math.isfinite(det):
+            dx, dy = -rx, -ry
+        else:
+            dx = -(d * rx - b * ry) / det
+            dy = -(-b * rx + a * ry) / det
+        ph0 = phi(sx, sy, psi, lx, ly)
+        slope = rx * dx + ry * dy
+        t = 1.0
+        for _ in range(60):
+            nsx, nsy, njxx, njxy, njyy, npsi = K.force_projection_eval(y, g, lx + t * dx, ly + t * dy, tau_out)
+            if phi(nsx, nsy, npsi, lx + t * dx, ly + t * dy) <= ph0 + 1e-4 * t * slope + 1e-15 * abs(ph0):
+                break
+            t *= 0.5
+        lx, ly = lx + t * dx, ly + t * dy
+        sx, sy, jxx, jxy, jyy, psi = nsx, nsy, njxx, njxy, njyy, npsi
+    rx, ry = sx - fx, sy - fy
+    if math.hypot(rx, ry) > 1e-9 * cap:
+        raise ConvergenceError("could not place the starting traction on the force constraint",
+                               solver="tangential/force-projection", residual=math.hypot(rx, ry) / cap,
+                               tol=1e-9)
+    return lx, ly
+
+
+class _Workspace:
+    """Preallocated grid buffers of one solve (allocated once per call, reused by every iteration)."""
+
+    def __init__(self, shape):
+        ny, nx = shape
+        f2 = lambda: np.zeros((2, ny, nx))
+        self.tau, self.u, self.u_prev, self.w = f2(), f2(), f2(), f2()
+        self.res, self.z, self.v, self.av, self.q, self.slip = f2(), f2(), f2(), f2(), f2(), f2()
+        self.kappa = np.zeros((ny, nx))
+        self.region = np.zeros((ny, nx), np.int8)
+
+
+def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, initial=None,
+                     extra_slip=None, params=TangentialParams()) -> "TangentialResult":
+    """Solve one step of the transient tangential problem (theory.md §5.1).
+
+    Parameters
+    ----------
+    op : bem.HalfSpaceOperator (uses op.tangential, op.tangential_inverse, op.self_coefficients).
+    bound : (ny, nx) traction bound g = mu p (MPa), zero outside the contact.
+    previous_traction : (2, ny, nx) tau' of the previous step (MPa), on the full grid.
+    force : (Fx, Fy) in N -- the total tangential force on the substrate; dU is unknown.
+    shift : (dUx, dUy) in mm -- the prescribed rigid-shift increment; the force is an output.
+        Exactly one of `force` and `shift` must be given.
+    initial : optional (2, ny, nx) warm-start traction (MPa); default tau' projected onto the new discs.
+    extra_slip : optional (2, ny, nx) slip (mm) added to s, e.g. the coupling term A^tz (p - p').
+    params : TangentialParams.
+
+    Returns TangentialResult; raises GrossSlidingError when |F| >= sum g dA (no equilibrium) and
+    ConvergenceError when the residual does not reach params.tol within params.max_iter products.
+    """
+    grid = op.grid
+    shape = grid.shape
+    dA = grid.cell_area
+    if (force is None) == (shift is None):
+        raise InputError("solve_tangential: give exactly one of force=(Fx, Fy) N or shift=(dUx, dUy) mm")
+    g = np.ascontiguousarray(bound, dtype=float)
+    if g.shape != shape:
+        raise InputError(f"bound has shape {g.shape}, the grid is {shape}")
+    if not np.all(np.isfinite(g)) or np.any(g < 0):
+        raise InputError("bound g = mu p must be finite and >= 0 (MPa)")
+    tau_p = np.asarray(previous_traction, dtype=float)
+    if tau_p.shape != (2,) + shape:
+        raise InputError(f"previous_traction has shape {tau_p.shape}, expected {(2,) + shape}")
+    force_mode = force is not None
+    capacity = float(np.sum(g)) * dA
+    if force_mode:
+        F = np.asarray(force, dtype=float).reshape(2)
+        Fmag = float(np.hypot(*F))
+        if not np.all(np.isfinite(F)):
+            raise InputError(f"force = {F!r} N must be finite")
+        if Fmag >= capacity * (1.0 - CAPACITY_MARGIN):
+            raise GrossSlidingError(
+                f"tangential force |F| = {Fmag:.6g} N (F = ({F[0]:.6g}, {F[1]:.6g}) N) reaches the friction "
+                f"capacity mu Fn = sum(mu p) dA = {capacity:.6g} N (f_t = {Fmag / capacity if capacity > 0 else math.inf:.6g}"
+                f" >= 1): gross sliding, no static equilibrium")
+        dU = np.zeros(2)
+    else:
+        dU = np.asarray(shift, dtype=float).reshape(2).copy()
+        if not np.all(np.isfinite(dU)):
+            raise InputError(f"shift = {dU!r} mm must be finite")
+
+    ws = _Workspace(shape)
+    tau, u, u_prev, w, res, z, v, av, q, slip, kappa, region = (
+        ws.tau, ws.u, ws.u_prev, ws.w, ws.res, ws.z, ws.v, ws.av, ws.q, ws.slip, ws.kappa, ws.region)
+    axx, ayy = op.self_coefficients["xx"], op.self_coefficients["yy"]
+    a_self = max(axx, ayy)
+    gmax = float(g.max()) if g.size else 0.0
+    products = 0
+
+    def matvec(field, out):
+        nonlocal products
+        products += 1
+        op.tangential(field[0], field[1], out=out)
+
+    # --- previous displacement and starting traction -----------------------------------------------
+    if np.any(tau_p):
+        matvec(tau_p, u_prev)
+    if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
+        return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, 0, 0.0, True, force_mode)
+    tau[...] = tau_p if initial is None else np.asarray(initial, dtype=float)
+    if not np.all(np.isfinite(tau)):
+        raise InputError("initial traction must be finite")
+    K.project_discs(tau, g)
+    if force_mode:
+        _project_on_force(tau.copy(), g, F / dA, tau)
+    if initial is None and np.array_equal(tau, tau_p):
+        u[...] = u_prev
+    elif np.any(tau):
+        matvec(tau, u)
+    else:
+        u[...] = 0.0
+    e = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
+
+    tol = params.tol
+    scale = a_self * gmax
+    restart = True
+    synced = True
+    vq_prev = 1.0
+    rmax = math.inf
+    n_stick = n_slip = 0
+    it = 0
+    while True:
+        # slip of the step for the current traction and division
+        np.subtract(u, u_prev, out=w)
+        if e is not None:
+            w += e
+        n_stick, n_slip = K.classify(tau, g, region)
+        for _ in range(3):
+            if force_mode:
+                gxx, gxy, gyy, bx, by = K.gram_and_fit(tau, g, region, w)
+                det = gxx * gyy - gxy * gxy
+                if det > 1e-12 * (gxx + gyy) ** 2:
+                    dU[0] = (gyy * bx - gxy * by) / det
+                    dU[1] = (-gxy * bx + gxx * by) / det
+                elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
+                    tr = gxx + gyy
+                    dU[0], dU[1] = bx / tr, by / tr
+            # release slip elements whose slip points along the traction (the traction must go back in)
+            if K.release(tau, g, region, w, dU[0], dU[1], tol * scale) == 0:
+                break
+            restart = True
+        rmax, snmax, rr = K.residual(tau, g, region, w, dU[0], dU[1], res, kappa, slip)
+        residual_rel = rmax / scale
+        if not math.isfinite(residual_rel):
+            raise ConvergenceError("non-finite residual in the tangential solver", solver="tangential",
+                                   iterations=products, regime=_regime(force, capacity, region))
+        if residual_rel < tol:
+            if synced:
+                return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products,
+                               residual_rel, True, force_mode)
+            matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
+            synced = True
+            restart = True
+            continue
+        if products >= params.max_iter:
+            raise ConvergenceError(
+                "tangential solver did not converge", solver="tangential (projected TangCG)",
+                iterations=products, residual=residual_rel, tol=tol,
+                regime=_regime(force, capacity, region))
+
+        # preconditioned, deflated residual: z = Pi Q P M P Q r
+        z[...] = res
+        K.scale_slip(tau, region, kappa, axx, ayy, z)
+        op.tangential_inverse(z[0], z[1], out=z)
+        K.scale_slip(tau, region, kappa, axx, ayy, z)
+        if force_mode:
+            K.deflate(tau, region, z, gxx, gxy, gyy)
+        rz = K.dot(res, z)
+        if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
+            z[...] = res
+            if force_mode:
+                K.deflate(tau, region, z, gxx, gxy, gyy)
+            rz = K.dot(res, z)
+            restart = True
+        if restart:
+            v[...] = z
+        else:
+            gamma = -K.direction(z, v, q, True, 0.0) / vq_prev
+            K.direction(z, v, q, False, gamma)
+        matvec(v, av)
+        vq = K.curvature_product(tau, region, kappa, v, av, q)
+        rv = K.dot(res, v)
+        if vq <= 0.0 or rv <= 0.0:
+            if restart:
+                raise ConvergenceError("tangential solver: search direction is not a descent direction",
+                                       solver="tangential", iterations=products, residual=residual_rel,
+                                       tol=tol, regime=_regime(force, capacity, region))
+            restart = True
+            continue
+        alpha = rv / vq
+        n_clip, dmax, dsx, dsy = K.step(tau, v, alpha, u, av, g, region, axx, ayy)
+        restart = n_clip > 0
+        vq_prev = vq
+        synced = synced and dmax == 0.0
+        if force_mode and (dsx != 0.0 or dsy != 0.0):
+            _restore_force(tau, region, g, F / dA, u, axx, ayy)
+        if n_clip > 0:
+            matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
+            synced = True
+        it += 1
+
+
+def _restore_force(tau, region, g, f, u, axx, ayy):
+    """Put the total force back on f = F/dA after renormalisation/projection (stick shift)."""
+    for _ in range(20):
+        sx, sy = K.masked_sum(tau, region)
+        dx, dy = f[0] - sx, f[1] - sy
+        if math.hypot(dx, dy) <= 1e-15 * float(np.sum(g)):
+            return
+        n_stick = int(np.count_nonzero(region == 1))
+        if n_stick == 0:
+            _project_on_force(tau.copy(), g, f, tau)
+            return
+        K.shift_stick(tau, region, g, dx / n_stick, dy / n_stick, u, axx, ayy)
+    _project_on_force(tau.copy(), g, f, tau)
+
+
+def _regime(force, capacity, region):
+    n_stick = int(np.count_nonzero(region == 1))
+    n_slip = int(np.count_nonzero(region == 2))
+    ft = "" if force is None else f"f_t = |F|/(mu Fn) = {float(np.hypot(*np.asarray(force, float))) / capacity:.6g}, "
+    return f"{ft}{n_stick} stick and {n_slip} slip elements"
+
+
+def _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products, residual, converged, force_mode):
+    displacement = u.copy()
+    if extra_slip is not None:
+        displacement += np.asarray(extra_slip, dtype=float)
+    force = np.array([tau[0].sum(), tau[1].sum()]) * dA
+    return TangentialResult(traction=tau.copy(), shift_increment=dU.copy(), force=force, slip=slip.copy(),
+                            displacement=displacement, region=region.copy(), iterations=products,
+                            residual=float(residual), converged=converged)
