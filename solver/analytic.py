@@ -97,3 +97,89 @@ class CattaneoMindlin:
         if not (-f_t_max <= f_t <= f_t_max):
             raise InputError(f"f_t = {f_t!r}: unloading branch needs -{f_t_max} <= f_t <= {f_t_max}")
         return self.shift(f_t_max) - 2.0 * self.shift(0.5 * (f_t_max - f_t))
+
+
+@dataclass(frozen=True)
+class HertzEllipse:
+    """Hertz contact of a body with principal radii Rx, Ry (mm) on a flat, contact modulus E* (MPa), load
+    Fn (N): profile h = x^2/(2 Rx) + y^2/(2 Ry), elliptic contact with semi-axes a (along x), b (along y).
+
+    Johnson 1985, §4.2 (eqs. 4.36-4.41 in the notation below). With A = 1/(2 Rx) and B = 1/(2 Ry) and,
+    for the long axis along x (A <= B, a >= b), the eccentricity e^2 = 1 - b^2/a^2 and the complete
+    elliptic integrals K(e), E(e) (scipy's ellipk/ellipe take the parameter m = e^2):
+
+        p(x, y) = p0 sqrt(1 - x^2/a^2 - y^2/b^2),       Fn = (2/3) pi a b p0
+        A = p0 b / (E* a^2 e^2) [K - E]
+        B = p0 b / (E* a^2 e^2) [(a^2/b^2) E - K]
+        d = p0 b K / E*
+
+    e follows from B/A = [(a/b)^2 E - K] / (K - E) (solved with brentq); then
+    a^3 = 3 Fn (K - E) / (2 pi A E* e^2), b = a sqrt(1 - e^2), p0 = 3 Fn / (2 pi a b), d = p0 b K / E*.
+    For Rx < Ry the roles of x and y are exchanged. Rx = Ry reduces to `HertzSphere` (e = 0).
+    """
+
+    Rx: float
+    Ry: float
+    E_star: float
+    Fn: float
+
+    def __post_init__(self):
+        for name in ("Rx", "Ry", "E_star", "Fn"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0):
+                raise InputError(f"HertzEllipse.{name} = {value!r}: must be finite and > 0")
+
+    def _solution(self):
+        """(a_long, b_short, e, K, E) with the long semi-axis along the axis of the larger radius."""
+        from scipy.optimize import brentq
+        from scipy.special import ellipe, ellipk
+
+        A, B = 0.5 / max(self.Rx, self.Ry), 0.5 / min(self.Rx, self.Ry)   # A <= B
+        ratio = B / A
+        if ratio - 1.0 < 1e-12:
+            a = (3.0 * self.Fn * (0.5 / A) / (4.0 * self.E_star)) ** (1.0 / 3.0)
+            return a, a, 0.0, 0.5 * math.pi, 0.5 * math.pi
+
+        def mismatch(e):
+            m = e * e
+            K, E = ellipk(m), ellipe(m)
+            return (E / (1.0 - m) - K) / (K - E) - ratio
+
+        e = brentq(mismatch, 1e-6, 1.0 - 1e-14, xtol=1e-15, rtol=1e-15, maxiter=200)
+        m = e * e
+        K, E = float(ellipk(m)), float(ellipe(m))
+        a = (3.0 * self.Fn * (K - E) / (2.0 * math.pi * A * self.E_star * m)) ** (1.0 / 3.0)
+        return a, a * math.sqrt(1.0 - m), e, K, E
+
+    @property
+    def eccentricity(self) -> float:
+        """e = sqrt(1 - (short/long)^2) of the contact ellipse."""
+        return self._solution()[2]
+
+    @property
+    def a(self) -> float:
+        """Semi-axis along x (mm)."""
+        long, short = self._solution()[:2]
+        return long if self.Rx >= self.Ry else short
+
+    @property
+    def b(self) -> float:
+        """Semi-axis along y (mm)."""
+        long, short = self._solution()[:2]
+        return short if self.Rx >= self.Ry else long
+
+    @property
+    def p0(self) -> float:
+        """Peak pressure 3 Fn / (2 pi a b) (MPa)."""
+        return 1.5 * self.Fn / (math.pi * self.a * self.b)
+
+    @property
+    def approach(self) -> float:
+        """Approach d = p0 b_short K(e) / E* (mm)."""
+        _, short, _, K, _ = self._solution()
+        return self.p0 * short * K / self.E_star
+
+    def pressure(self, x, y):
+        """p(x, y) = p0 sqrt(1 - x^2/a^2 - y^2/b^2) inside, 0 outside (MPa); x, y in mm."""
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        return self.p0 * np.sqrt(np.clip(1.0 - (x / self.a) ** 2 - (y / self.b) ** 2, 0.0, None))
