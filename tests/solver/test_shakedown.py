@@ -1,0 +1,78 @@
+"""Classification of a run from its per-period displacements (solver.shakedown; theory §6.2)."""
+import numpy as np
+import pytest
+
+from bem.errors import InputError
+from solver.shakedown import STATES, Classification, classify, gross_sliding
+
+U0 = 0.8   # mm
+
+
+def _run(increments, U_start=0.3):
+    """U at the period ends (mm) from normalised increments du_k."""
+    return U_start + U0 * np.concatenate(([0.0], np.cumsum(increments)))
+
+
+def test_geometric_decay_shakes_down_after_the_right_number_of_periods():
+    # du_k = 0.1 * 0.5^(k-1): du_11 = 9.8e-5 is the first below 1e-4, so shakedown after period 10
+    du = 0.1 * 0.5 ** np.arange(15)
+    U = _run(du)
+    c = classify(U, U0)
+    assert c.state == "shakedown"
+    assert c.periods_to_shakedown == 10
+    assert c.u_sd == pytest.approx(U[-1] / U0, abs=1e-15)
+    assert c.du == pytest.approx(du[-1], rel=1e-9)
+    assert c.dU_per_period == pytest.approx(du[-1] * U0, rel=1e-9)
+    np.testing.assert_allclose(c.increments, du, rtol=1e-9, atol=1e-15)
+
+
+def test_no_slip_at_all_is_shakedown_after_zero_periods():
+    c = classify(np.full(6, 0.25), U0)
+    assert c.state == "shakedown" and c.periods_to_shakedown == 0 and c.u_sd == pytest.approx(0.25 / U0)
+
+
+def test_constant_increment_is_ratcheting():
+    c = classify(_run(np.full(10, 0.02)), U0)
+    assert c.state == "ratcheting"
+    assert c.du == pytest.approx(0.02, rel=1e-9) and c.u_sd is None and c.periods_to_shakedown is None
+
+
+def test_increment_settling_to_a_constant_is_ratcheting():
+    du = 0.03 + 0.1 * 0.3 ** np.arange(12)       # transient decays onto a constant increment
+    assert classify(_run(du), U0).state == "ratcheting"
+
+
+def test_slow_decay_above_tol_is_undecided_and_suggests_more_periods():
+    du = 0.01 * 0.8 ** np.arange(10)              # still 1.3e-3 after 10 periods, shrinking 20 % per period
+    c = classify(_run(du), U0)
+    assert c.state == "undecided"
+    assert "more period" in c.message and "decaying" in c.message
+    assert c.u_sd is None and c.du == pytest.approx(du[-1], rel=1e-9)
+
+
+def test_too_few_periods_is_undecided():
+    assert classify([0.1], U0).state == "undecided"               # loading only
+    assert classify(_run([0.05]), U0).state == "undecided"        # one period, one increment: not settled
+
+
+def test_tolerance_sets_the_resolution():
+    du = 0.1 * 0.5 ** np.arange(15)               # last du = 6.1e-6
+    assert classify(_run(du), U0, tol=1e-6).state == "undecided"
+    assert classify(_run(du), U0, tol=1e-5).state == "shakedown"
+
+
+def test_gross_sliding_is_an_allowed_state_set_by_the_caller():
+    assert set(STATES) == {"shakedown", "ratcheting", "undecided", "gross_sliding"}
+    c = gross_sliding([], U0, "Ft > mu Fn")
+    assert c.state == "gross_sliding" and "Ft > mu Fn" in c.message and c.du is None
+    with pytest.raises(InputError, match="state"):
+        Classification("walking", None, None, None, None, np.zeros(0))
+
+
+@pytest.mark.parametrize("U, U0_, kw, name", [
+    ([0.1, np.nan], U0, {}, "non-finite"), ([], U0, {}, "empty"), ([0.1, 0.2], 0.0, {}, "U0"),
+    ([0.1, 0.2], U0, {"tol": -1.0}, "tol"), ([0.1, 0.2], U0, {"settle_periods": 0}, "settle_periods"),
+])
+def test_bad_input_is_refused(U, U0_, kw, name):
+    with pytest.raises(InputError, match=name):
+        classify(U, U0_, **kw)
