@@ -39,7 +39,7 @@ from numba import njit
 
 from bem.errors import ConvergenceError, GrossSlidingError, InputError
 from .analytic import HertzSphere
-from .shakedown import Classification, classify, gross_sliding
+from .shakedown import DEFAULT_TOL, Classification, classify, gross_sliding
 
 DEFAULT_N_SPRINGS = 4001
 
@@ -312,7 +312,7 @@ def _centre_path(W, dW, periods):
 
 
 def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1, n_springs=None,
-                 ds=None) -> MDRResult:
+                 ds=None, shakedown_tol=DEFAULT_TOL) -> MDRResult:
     """Run the 1-D MDR model of oscillating rolling (theory §8.2); see the module docstring.
 
     R: sphere radius (mm); E_star, G_star: contact moduli E*, G* (MPa, bem.materials.MaterialPair);
@@ -321,6 +321,7 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
     Springs: s_i = i ds, |i| <= N, covering [-(a + W) - ds, a + W + ds] at least, so that every spring that
     can ever touch is modelled.  Give either ds (mm) or n_springs (odd total count, rounded up to odd;
     default 4001, then ds = (a + W) / ((n_springs - 1)/2 - 1)).
+    shakedown_tol: tolerance on the per-period increment |dU|/U0 passed to solver.shakedown.classify.
     """
     R = _positive("R", R, "mm")
     E_star = _positive("E_star", E_star, "MPa")
@@ -399,7 +400,7 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
     if failure is not None:
         cls = gross_sliding(U_end, U0, failure)
     else:
-        cls = classify(U_end, U0)
+        cls = classify(U_end, U0, tol=shakedown_tol)
     U_stat = float(history["U"][n_load - 1]) if done >= n_load else math.nan
     stick0 = float(history["stick_length"][n_load - 1]) if done >= n_load else math.nan
     return MDRResult(history=history, U_period_end=U_end, U_stat=U_stat, U0=U0, a=a, d=d_hertz,
