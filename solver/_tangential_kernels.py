@@ -323,7 +323,7 @@ def dot(a, b):
 
 
 @_jit
-def step(tau, v, alpha, u, av, g, region, axx, ayy):
+def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
     """tau += alpha v, u += alpha A v, then back onto the discs.
 
     Slip elements are renormalised to |tau| = g (the linearised step moves along the tangent);
@@ -344,10 +344,26 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy):
                 continue
             u[0, j, i] += alpha * av[0, j, i]
             u[1, j, i] += alpha * av[1, j, i]
-            tx = tau[0, j, i] + alpha * v[0, j, i]
-            ty = tau[1, j, i] + alpha * v[1, j, i]
-            m = math.hypot(tx, ty)
             gi = g[j, i]
+            ax = alpha * v[0, j, i]
+            ay = alpha * v[1, j, i]
+            if r == 2:
+                # trust region on the rotation of a slip traction: the linearisation about the current
+                # direction is only valid for small angles (a large tangent step would also be
+                # shortened arbitrarily by the renormalisation); counted as a projection event
+                am = math.hypot(ax, ay)
+                if am > max_turn * gi:
+                    f = max_turn * gi / am
+                    u[0, j, i] += axx * (ax * f - ax)
+                    u[1, j, i] += ayy * (ay * f - ay)
+                    dsx += ax * f - ax
+                    dsy += ay * f - ay
+                    ax *= f
+                    ay *= f
+                    n_clip += 1
+            tx = tau[0, j, i] + ax
+            ty = tau[1, j, i] + ay
+            m = math.hypot(tx, ty)
             if r == 2 or m > gi:
                 if r == 1:
                     n_clip += 1

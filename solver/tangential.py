@@ -67,6 +67,11 @@ from . import _tangential_kernels as K
 #: Relative margin below the friction capacity sum g dA: a force within this of the capacity is gross
 #: sliding (the stick zone would be far below one element and the problem has no usable solution).
 CAPACITY_MARGIN = 1e-9
+_RESYNC_ON_CLIP = True
+#: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
+_MAX_TURN = 0.5
+_RELEASE_RATIO = math.inf  # release as soon as the multiplier says so (TangCG rule)
+_RELEASE_FRACTION = 0.0
 
 
 @dataclass(frozen=True)
@@ -104,50 +109,46 @@ def traction_capacity(bound, grid) -> float:
     return float(np.sum(bound)) * grid.cell_area
 
 
-def _project_on_force(y, g, f, tau_out, lam0=(0.0, 0.0)):
+def _project_on_force(y, g, f, tau_out):
     """tau_out = Euclidean projection of y onto {|tau_I| <= g_I} intersected with {sum tau = f}.
 
     The projection is proj_discs(y + lambda) with lambda (MPa) the root of the monotone 2-D map
-    sum proj_discs(y + lambda) = f, found by Newton on the convex dual with Armijo backtracking.
-    f = F/dA in MPa; requires |f| < sum g.
+    S(lambda) = sum proj_discs(y + lambda) = f (the gradient of a convex dual function), found by a damped
+    Newton iteration on |S - f|. f = F/dA in MPa; requires |f| < sum g.
     """
-    lx, ly = lam0
     cap = float(np.sum(g))
     tol = 1e-13 * cap
     fx, fy = f
-
-    def phi(sx, sy, psi, lx, ly):
-        return psi - lx * fx - ly * fy
-
-    sx, sy, jxx, jxy, jyy, psi = K.force_projection_eval(y, g, lx, ly, tau_out)
+    n_contact = max(int(np.count_nonzero(g > 0)), 1)
+    sy0 = K.force_projection_eval(y, g, 0.0, 0.0, tau_out)
+    lx, ly = (fx - sy0[0]) / n_contact, (fy - sy0[1]) / n_contact  # exact if nothing saturates
+    sx, sy, jxx, jxy, jyy, _ = K.force_projection_eval(y, g, lx, ly, tau_out)
+    err = math.hypot(sx - fx, sy - fy)
     for _ in range(200):
+        if err <= tol:
+            return
         rx, ry = sx - fx, sy - fy
-        if math.hypot(rx, ry) <= tol:
-            return lx, ly
         reg = 1e-12 * (jxx + jyy) + 1e-300
         a, b, d = jxx + reg, jxy, jyy + reg
         det = a * d - b * b
-        if det <= 0.0 or not math.isfinite(det):
-            dx, dy = -rx, -ry
-        else:
-            dx = -(d * rx - b * ry) / det
-            dy = -(-b * rx + a * ry) / det
-        ph0 = phi(sx, sy, psi, lx, ly)
-        slope = rx * dx + ry * dy
+        dx = -(d * rx - b * ry) / det
+        dy = -(-b * rx + a * ry) / det
         t = 1.0
-        for _ in range(60):
-            nsx, nsy, njxx, njxy, njyy, npsi = K.force_projection_eval(y, g, lx + t * dx, ly + t * dy, tau_out)
-            if phi(nsx, nsy, npsi, lx + t * dx, ly + t * dy) <= ph0 + 1e-4 * t * slope + 1e-15 * abs(ph0):
+        for _ in range(80):
+            nsx, nsy, njxx, njxy, njyy, _ = K.force_projection_eval(y, g, lx + t * dx, ly + t * dy, tau_out)
+            nerr = math.hypot(nsx - fx, nsy - fy)
+            if nerr < (1.0 - 1e-4 * t) * err:
                 break
             t *= 0.5
+        else:
+            break
         lx, ly = lx + t * dx, ly + t * dy
-        sx, sy, jxx, jxy, jyy, psi = nsx, nsy, njxx, njxy, njyy, npsi
-    rx, ry = sx - fx, sy - fy
-    if math.hypot(rx, ry) > 1e-9 * cap:
+        sx, sy, jxx, jxy, jyy, err = nsx, nsy, njxx, njxy, njyy, nerr
+    sx, sy, *_ = K.force_projection_eval(y, g, lx, ly, tau_out)
+    err = math.hypot(sx - fx, sy - fy)
+    if err > 1e-10 * cap:
         raise ConvergenceError("could not place the starting traction on the force constraint",
-                               solver="tangential/force-projection", residual=math.hypot(rx, ry) / cap,
-                               tol=1e-9)
-    return lx, ly
+                               solver="tangential/force-projection", residual=err / cap, tol=1e-10)
 
 
 class _Workspace:
@@ -268,17 +269,22 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
                     tr = gxx + gyy
                     dU[0], dU[1] = bx / tr, by / tr
-            # release slip elements whose slip points along the traction (the traction must go back in)
-            if K.release(tau, g, region, w, dU[0], dU[1], tol * scale) == 0:
+            rmax, snmax, rr = K.residual(tau, g, region, w, dU[0], dU[1], res, kappa, slip)
+            # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
+            # back inside) only once the current face is solved better than that violation: releasing
+            # on a poor multiplier estimate makes the division cycle near the traction bound.
+            if snmax <= tol * scale or rmax > _RELEASE_RATIO * snmax:
                 break
+            K.release(tau, g, region, w, dU[0], dU[1], _RELEASE_FRACTION * snmax)
             restart = True
-        rmax, snmax, rr = K.residual(tau, g, region, w, dU[0], dU[1], res, kappa, slip)
-        residual_rel = rmax / scale
+        residual_rel = max(rmax, snmax) / scale
         if not math.isfinite(residual_rel):
             raise ConvergenceError("non-finite residual in the tangential solver", solver="tangential",
                                    iterations=products, regime=_regime(force, capacity, region))
         if residual_rel < tol:
             if synced:
+                if force_mode and not np.any(region == 1):
+                    _stick_point_shift(w, g, region, dU, slip)
                 return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products,
                                residual_rel, True, force_mode)
             matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
@@ -321,16 +327,37 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             restart = True
             continue
         alpha = rv / vq
-        n_clip, dmax, dsx, dsy = K.step(tau, v, alpha, u, av, g, region, axx, ayy)
+        n_clip, dmax, dsx, dsy = K.step(tau, v, alpha, u, av, g, region, axx, ayy, _MAX_TURN)
         restart = n_clip > 0
         vq_prev = vq
         synced = synced and dmax == 0.0
         if force_mode and (dsx != 0.0 or dsy != 0.0):
             _restore_force(tau, region, g, F / dA, u, axx, ayy)
-        if n_clip > 0:
+        if n_clip > 0 and _RESYNC_ON_CLIP:
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             synced = True
         it += 1
+
+
+def _stick_point_shift(w, g, region, dU, slip):
+    """Rigid shift when the stick zone is smaller than one element (no stick element left, P12).
+
+    Without a stick element the multiplier of the force constraint is no longer a displacement of
+    stuck material: it is fixed only by the small Poisson tilts of the slip directions and grows
+    without bound as |F| -> sum g dA (+15 % against Mindlin at f_t = 0.999, dx = 0.2 mm). The
+    physical shift is the displacement of the sub-element stick point, where the slip vanishes and
+    which lies in the element of least slip. We report dU = w there (the continuum condition
+    s = w - U <= 0 along the traction, with equality at the stick point), mark that element as stick
+    (it sits on the bound with zero slip, which Coulomb allows), and recompute the slip of the step.
+    The tractions are the exact discrete solution and are not changed.
+    """
+    mag = np.where(g > 0, np.hypot(w[0] - dU[0], w[1] - dU[1]), np.inf)
+    j, i = np.unravel_index(int(np.argmin(mag)), mag.shape)
+    dU[0], dU[1] = w[0, j, i], w[1, j, i]
+    region[j, i] = 1
+    inside = region == 2
+    slip[0] = np.where(inside, w[0] - dU[0], 0.0)
+    slip[1] = np.where(inside, w[1] - dU[1], 0.0)
 
 
 def _restore_force(tau, region, g, f, u, axx, ayy):
