@@ -46,6 +46,14 @@ projection) are added with the self coefficients only, and u is recomputed exact
 accepted. `TangentialResult.iterations` counts every `op.tangential` call of the solve (including
 the product A tau' and the re-synchronisations), so it is the honest cost in convolution pairs.
 
+Safeguards: a slip traction may turn by at most _MAX_TURN g per iteration (trust region of the
+linearised rotation); when no element is left in stick (stick zone below one element, f_t -> 1), the
+reported dU is the displacement of the sub-element stick point (see `_stick_point_shift`).
+Known limitation (benchmarks/README.md): on fine grids (217^2) a cold solve from zero traction close to the
+bound (f_t >= 0.95) can cycle between release and projection and ends in ConvergenceError.
+
+`TangentialResult.displacement` is A tau plus `extra_slip` when that is given (the issue's convention).
+
 Stopping criterion (`TangentialParams.tol`): with u exactly re-synchronised,
 
     residual = max_I |r_I| / (a_self * max g)   <  tol
