@@ -1,0 +1,74 @@
+"""Command line: `rollcontact run | limits | ...` (see README for the full walkthrough).
+
+Exit codes: 0 success, 1 the run failed (its partial results are still written), 2 bad input.
+"""
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+import sys
+
+from bem.errors import RollcontactError, SceneError
+
+from .scene import Scene, default_scene
+
+
+def _add_run(sub):
+    p = sub.add_parser("run", help="run one scene (default: the seed paper's perpendicular scene)",
+                       description="Run one scene and write its results to HDF5. Units: mm, N, MPa.")
+    p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded paper scene)")
+    p.add_argument("-o", "--output", help="output HDF5 file (default: results/<scene name>.h5)")
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                   help="override a scene key, e.g. --set load.ft=0.77 (repeatable)")
+    p.add_argument("--restart", metavar="RUN.h5",
+                   help="continue a stored run from its last stored step (or --step)")
+    p.add_argument("--step", type=int, help="with --restart: the stored step to continue from")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
+    p.set_defaults(func=_run)
+
+
+def _run(args) -> int:
+    from .run import format_summary, load_state, print_progress, run_scene
+    restart = history = None
+    if args.restart:
+        scene, restart, history = load_state(args.restart, args.step)
+        if args.scene:
+            raise SceneError("give either a scene file or --restart, not both")
+    else:
+        scene = Scene.from_toml(args.scene) if args.scene else default_scene()
+    if args.overrides:
+        scene = scene.with_overrides(args.overrides)
+    out = Path(args.output) if args.output else Path("results") / f"{scene.name}.h5"
+    progress = None if args.quiet else print_progress
+    outcome = run_scene(scene, out, progress=progress, restart=restart, restart_history=history)
+    print(format_summary(outcome))
+    return 0 if outcome.data.status == "complete" else 1
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="rollcontact", description=(
+        "Quasi-static rolling contact with Coulomb friction on an elastic half-space "
+        "(boundary elements, FFT). Units: mm, N, MPa, degrees."))
+    sub = parser.add_subparsers(dest="command", required=True)
+    _add_run(sub)
+    try:
+        from . import limits_cmd
+    except ImportError:  # pragma: no cover - optional while the module is being written
+        limits_cmd = None
+    if limits_cmd is not None:
+        limits_cmd.register(sub)
+    return parser
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except RollcontactError as exc:
+        print(f"rollcontact {args.command}: error: {exc}", file=sys.stderr)
+        return 2 if isinstance(exc, ValueError) else 1
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

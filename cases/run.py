@@ -1,0 +1,254 @@
+"""Run one scene: scene -> grid and operator (bem) -> stepping solver (solver) -> HDF5 file (cases).
+
+`run_scene` is the single entry point used by the CLI and the sweeps. It never loses finished work: a
+run that fails (no convergence, contact at the grid edge, Ctrl-C) still writes the steps it completed,
+with status 'failed' and the error message; gross sliding is a result (state 'gross_sliding'), not a
+failure. Units: mm, N, MPa.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+import math
+from pathlib import Path
+import sys
+import time
+
+import numpy as np
+
+from bem.errors import GrossSlidingError, InputError, RollcontactError
+from bem.grid import Grid, contact_box
+from bem.operator import HalfSpaceOperator
+from solver.analytic import CattaneoMindlin, HertzSphere
+from solver.normal import NormalParams
+from solver.profiles import QuadricProfile
+from solver.shakedown import classify
+from solver.stepping import LoadPath, StepParams, StepState, build_path, run_path
+from solver.tangential import TangentialParams
+
+from .hdf5 import RunData, read_run, version, write_run
+from .scene import Scene
+
+HISTORY_NAMES = ("step", "period", "W_x", "W_y", "approach", "Fn", "contact_area", "stick_area", "U_x",
+                 "U_y", "F_x", "F_y", "iterations", "normal_iterations", "tangential_iterations",
+                 "outer_iterations", "residual", "wall_time")
+FIELD_NAMES = ("p", "u_z", "tau_x", "tau_y", "slip_x", "slip_y", "u_x", "u_y", "region")
+
+
+@dataclass
+class RunOutcome:
+    path: Path
+    data: RunData
+    wall_time: float
+
+
+def scene_path(scene: Scene) -> LoadPath:
+    """The scene's loading phase and oscillation as a LoadPath (solver.stepping.build_path)."""
+    e_f = np.array(scene.load_direction)
+    mu_fn = scene.load.mu * scene.load.Fn
+    return build_path(force=scene.Ft * e_f, ramp_steps=scene.load.ramp_steps,
+                      levels=[lv * mu_fn * e_f for lv in scene.load.levels],
+                      rolling_direction=scene.rolling_direction, amplitude=scene.amplitude,
+                      max_step=scene.motion.dW, periods=scene.motion.periods)
+
+
+def scene_grid(scene: Scene, path: LoadPath) -> Grid:
+    """Grid just large enough for every contact the path can produce, plus the scene's margin.
+
+    The Hertz semi-axes of an ellipse are estimated from the equivalent sphere, c (Rx/Ry)^(+-1/3), with
+    a 10 % allowance; the run stops with ContactEdgeError if a contact still reaches the edge.
+    """
+    rx, ry = scene.radii
+    c = scene.contact_radius
+    semi_x, semi_y = 1.1 * c * (rx / ry) ** (1 / 3), 1.1 * c * (ry / rx) ** (1 / 3)
+    if rx == ry:
+        semi_x = semi_y = c
+    dx, dy = scene.spacing
+    return Grid.covering(*contact_box(semi_x, semi_y, path.centres, scene.grid.margin), dx, dy)
+
+
+def field_steps(scene: Scene, path: LoadPath) -> np.ndarray:
+    """Steps whose fields are stored ([output] fields)."""
+    n = path.n_steps
+    mode = scene.output.fields
+    if mode == "all":
+        return np.arange(n)
+    if mode == "none":
+        return np.zeros(0, dtype=int)
+    if mode == "last":
+        return np.array([n - 1])
+    keep = path.reversal.copy()
+    keep[np.flatnonzero(path.period == 0)[-1]] = True
+    keep[-1] = True
+    return np.flatnonzero(keep)
+
+
+def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = None,
+              restart_history: dict | None = None) -> RunOutcome:
+    """Run `scene` and write the results to `out` (HDF5). Returns the outcome (also on failure).
+
+    progress: callable(message) for progress lines (None: silent). restart / restart_history: continue
+    from a stored step (see `load_state`).
+    """
+    if scene.solver.fidelity == "mdr":
+        from .run_mdr import run_scene_mdr
+        return run_scene_mdr(scene, out, progress=progress)
+    t_start = time.perf_counter()
+    path = scene_path(scene)
+    grid = scene_grid(scene, path)
+    pair = scene.material_pair
+    coupling = {"auto": "auto", "on": True, "off": False}[scene.solver.coupling]
+    op = HalfSpaceOperator(grid, pair, threads=scene.solver.threads, coupling=coupling)
+    profile = QuadricProfile(*scene.radii)
+    tol, max_iter = scene.solver.tol, scene.solver.max_iter
+    params = StepParams(NormalParams(tol=tol, max_iter=max_iter), TangentialParams(tol=tol, max_iter=max_iter),
+                        coupling_tol=max(tol, 1e-10))
+    snap = set(field_steps(scene, path).tolist())
+    history = {k: [] for k in HISTORY_NAMES}
+    if restart_history:
+        for k in HISTORY_NAMES:
+            history[k] = list(np.asarray(restart_history[k])[: restart.step + 1])
+    fields = {k: [] for k in FIELD_NAMES}
+    stored = []
+    status, error, state_label = "complete", "", None
+    dA = grid.cell_area
+    if progress:
+        progress(f"grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = {grid.dy} mm), "
+                 f"{path.n_steps} steps, coupling {'on' if op.coupled else 'off'} (beta = {pair.beta:.2e})")
+    last_report = time.perf_counter()
+    try:
+        for rec in run_path(op, profile, path, Fn=scene.load.Fn, mu=scene.load.mu, params=params,
+                            state=restart):
+            nr, tr, st = rec.normal, rec.tangential, rec.state
+            row = dict(step=rec.step, period=int(path.period[rec.step]), W_x=rec.centre[0], W_y=rec.centre[1],
+                       approach=nr.approach, Fn=nr.force, contact_area=float(nr.contact.sum()) * dA,
+                       stick_area=float((tr.region == 1).sum()) * dA, U_x=st.rigid_shift[0],
+                       U_y=st.rigid_shift[1], F_x=tr.force[0], F_y=tr.force[1],
+                       iterations=nr.iterations + tr.iterations, normal_iterations=nr.iterations,
+                       tangential_iterations=tr.iterations, outer_iterations=rec.outer_iterations,
+                       residual=max(nr.residual, tr.residual), wall_time=rec.wall_time)
+            for k, v in row.items():
+                history[k].append(v)
+            if rec.step in snap:
+                stored.append(rec.step)
+                for k, v in (("p", nr.pressure), ("u_z", nr.displacement), ("tau_x", tr.traction[0]),
+                             ("tau_y", tr.traction[1]), ("slip_x", tr.slip[0]), ("slip_y", tr.slip[1]),
+                             ("u_x", tr.displacement[0]), ("u_y", tr.displacement[1]), ("region", tr.region)):
+                    fields[k].append(v.copy())
+            if progress and (time.perf_counter() - last_report > 2.0 or rec.step == path.n_steps - 1):
+                last_report = time.perf_counter()
+                progress(f"step {rec.step + 1}/{path.n_steps}  period {row['period']}/{scene.motion.periods}  "
+                         f"U_x = {row['U_x']:.6f} mm  iterations {nr.iterations}+{tr.iterations}")
+    except GrossSlidingError as exc:
+        state_label, error = "gross_sliding", str(exc)
+    except (RollcontactError, KeyboardInterrupt) as exc:
+        status = "failed"
+        error = "interrupted by the user" if isinstance(exc, KeyboardInterrupt) else f"{type(exc).__name__}: {exc}"
+        if isinstance(exc, KeyboardInterrupt):
+            _write(scene, out, grid, history, fields, stored, status, error, {})
+            raise
+    wall = time.perf_counter() - t_start
+    summary = summarise(scene, path, history, state_label, grid, wall)
+    data = _write(scene, out, grid, history, fields, stored, status, error, summary)
+    return RunOutcome(Path(out), data, wall)
+
+
+def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:
+    """Run summary: normalisations of seed Eq. 9 with the consistent constants (theory §8.2, P3)."""
+    pair = scene.material_pair
+    hertz = HertzSphere(scene.equivalent_radius, pair.E_star, scene.load.Fn)
+    cm = CattaneoMindlin(hertz, scene.load.mu, pair.G_star)
+    U0 = cm.U0
+    e_f = np.array(scene.load_direction)
+    U = np.asarray(history["U_x"]) * e_f[0] + np.asarray(history["U_y"]) * e_f[1]
+    n_done = len(U)
+    summary = dict(a=hertz.a, d=hertz.approach, p0=hertz.p0, U0=U0, f_t=scene.f_t,
+                   w=scene.amplitude / hertz.a, W=scene.amplitude, dW_used=path.dW, nx=grid.nx, ny=grid.ny,
+                   elements=grid.size, steps=n_done, steps_planned=path.n_steps,
+                   iterations=int(np.sum(history["iterations"])) if n_done else 0, wall_time=wall)
+    n_load = int(np.flatnonzero(path.period == 0)[-1]) + 1
+    if n_done >= n_load:
+        summary.update(U_stat=float(U[n_load - 1]), u_stat=float(U[n_load - 1] / U0))
+    if state_label:
+        summary["state"] = state_label
+    elif path.period.max() == 0:
+        summary["state"] = "static" if n_done == path.n_steps else "incomplete"
+    else:
+        ends = [e for e in path.period_ends() if e < n_done]
+        if len(ends) >= 2:
+            cls = classify(U[ends], U0, tol=scene.solver.shakedown_tol)
+            summary.update(state=cls.state, periods_to_shakedown=cls.periods_to_shakedown,
+                           U_sd=float(U[ends[-1]]) if cls.state == "shakedown" else None,
+                           u_sd=cls.u_sd if cls.state == "shakedown" else None,
+                           dU_per_period=float(U[ends[-1]] - U[ends[-2]]), du=cls.du)
+        else:
+            summary["state"] = "incomplete"
+    return {k: v for k, v in summary.items()}
+
+
+def _write(scene, out, grid, history, fields, stored, status, error, summary) -> RunData:
+    n = len(stored)
+    ny, nx = grid.shape
+    flds = {}
+    for k, v in fields.items():
+        dtype = np.int8 if k == "region" else np.float64
+        flds[k] = np.array(v, dtype=dtype) if n else np.zeros((0, ny, nx), dtype=dtype)
+    hist = {k: np.asarray(v) for k, v in history.items()}
+    data = RunData(scene_toml=scene.to_toml(), status=status, error=error, x=grid.x, y=grid.y,
+                   history=hist, fields=flds, field_steps=np.array(stored, dtype=np.int64),
+                   summary=summary, version=version())
+    write_run(out, data)
+    return data
+
+
+def load_state(path, step: int | None = None) -> tuple[Scene, StepState, dict]:
+    """Scene, StepState and history of a stored run at `step` (default: the last stored field step)."""
+    data = read_run(path)
+    scene = Scene.from_toml_text(data.scene_toml, name=Path(path).stem)
+    steps = list(np.asarray(data.field_steps))
+    if not steps:
+        raise InputError(f"{path}: stores no fields, so no step can be continued from")
+    step = steps[-1] if step is None else int(step)
+    if step not in steps:
+        raise InputError(f"{path}: fields of step {step} were not stored; stored steps: {steps}")
+    i = steps.index(step)
+    h = data.history
+    k = int(np.flatnonzero(np.asarray(h["step"]) == step)[0])
+    state = StepState(step, data.fields["p"][i].copy(),
+                      np.stack([data.fields["tau_x"][i], data.fields["tau_y"][i]]).copy(),
+                      np.array([h["U_x"][k], h["U_y"][k]], dtype=float), float(h["approach"][k]))
+    return scene, state, h
+
+
+def print_progress(message: str):
+    print(message, file=sys.stderr, flush=True)
+
+
+def format_summary(outcome: RunOutcome) -> str:
+    """Short human summary printed by `rollcontact run`."""
+    d = outcome.data
+    s, h = d.summary, d.history
+    lines = []
+    if len(h.get("step", [])):
+        a_eq = math.sqrt(h["contact_area"][-1] / math.pi)
+        pressure = ""
+        if len(d.field_steps):
+            pressure = (f", max pressure {float(np.max(d.fields['p'][-1])):.5f} MPa "
+                        f"(Hertz p0 = {s['p0']:.5f} MPa)")
+        lines.append(f"contact radius {a_eq:.4f} mm (equivalent; Hertz a = {s['a']:.4f} mm), approach "
+                     f"{h['approach'][-1]:.6f} mm (Hertz d = {s['d']:.6f} mm){pressure}")
+        lines.append(f"steps {s['steps']}/{s['steps_planned']}, iterations {s['iterations']} "
+                     f"(normal + tangential), grid {s['nx']} x {s['ny']}, wall time {outcome.wall_time:.2f} s")
+    if "u_stat" in s:
+        lines.append(f"f_t = {s['f_t']:.4g}: U_stat = {s['U_stat']:.6f} mm, u_stat = {s['u_stat']:.5f}")
+    state = s.get("state", "?")
+    line = f"state: {state}"
+    if state == "shakedown":
+        line += (f" after {s['periods_to_shakedown']} period(s); U_sd = {s['U_sd']:.6f} mm, "
+                 f"u_sd = {s['u_sd']:.5f} (w = {s['w']:.4g})")
+    elif state in ("ratcheting", "undecided"):
+        line += f"; dU per period = {s['dU_per_period']:.3e} mm, du = {s['du']:.3e} (w = {s['w']:.4g})"
+    lines.append(line)
+    if d.status != "complete":
+        lines.append(f"status: {d.status}: {d.error}")
+    lines.append(f"results written to {Path(outcome.path).resolve()}")
+    return "\n".join(lines)

@@ -1,0 +1,179 @@
+"""Quasi-static time stepping of oscillating rolling on a world-fixed grid (theory.md §6).
+
+One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
+
+    1. h_n = the undeformed profile shifted to the current sphere centre c_n (seed Eq. 7, any direction);
+    2. normal problem with constant Fn, warm-started from p_{n-1}           -> p_n, approach d_n;
+    3. bound g = mu p_n; tangential shift problem with the force F_n and the previous traction
+       tau_{n-1} as memory                                                  -> tau_n, dU_n; U_n = U_{n-1} + dU_n;
+    4. coupled materials only: repeat 2-3 with the coupling terms until both settle (solver.coupled).
+
+The path is prescribed: a loading phase (Fn alone, then the tangential force in `ramp_steps` increments,
+then any further force levels) followed by `periods` triangle-wave periods of the centre,
+0 -> +W -> 0 -> -W -> 0, in steps of W/ceil(W/dW) along the rolling direction. Rolling is pure rolling of a
+rigid sphere: only the profile moves, there is no rigid creepage (theory §5.1 note v).
+
+Units mm, N, MPa. U is the rigid shift of the sphere relative to the substrate far field, so that
+U.F > 0 under a steady force (theory §0).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import math
+import time
+from typing import Iterator
+
+import numpy as np
+
+from bem.errors import ContactEdgeError, InputError
+from .coupled import solve_coupled_step
+from .normal import NormalParams, NormalResult
+from .tangential import TangentialParams, TangentialResult
+
+
+@dataclass(frozen=True)
+class LoadPath:
+    """The prescribed sequence of steps: sphere centre (mm), tangential force (N), period index.
+
+    period[n] = 0 during the loading phase and k during the k-th oscillation period; `reversal[n]` is
+    True at the reversal points (+W, -W) and at the end of each period.
+    """
+
+    centres: np.ndarray      # (n, 2) mm
+    forces: np.ndarray       # (n, 2) N
+    period: np.ndarray       # (n,) int
+    reversal: np.ndarray     # (n,) bool
+    dW: float = 0.0          # rolling step actually used (mm)
+
+    @property
+    def n_steps(self) -> int:
+        return len(self.period)
+
+    def period_ends(self) -> np.ndarray:
+        """Step indices at which U is compared period to period: end of loading, then each period end."""
+        ends = [int(np.flatnonzero(self.period == 0)[-1])]
+        for k in range(1, int(self.period.max()) + 1):
+            ends.append(int(np.flatnonzero(self.period == k)[-1]))
+        return np.array(ends)
+
+
+def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), amplitude=0.0,
+               max_step=0.2, periods=0) -> LoadPath:
+    """Loading phase then oscillation (theory §6.1).
+
+    force: final tangential force vector (N) of the ramp; levels: further force vectors (N), each reached
+    in `ramp_steps` equal increments (unloading, reversal); amplitude W and max_step dW in mm.
+    """
+    if int(ramp_steps) < 1:
+        raise InputError(f"load.ramp_steps = {ramp_steps}: must be an integer >= 1")
+    if amplitude < 0 or not math.isfinite(amplitude):
+        raise InputError(f"motion.W = {amplitude} mm: must be finite and >= 0")
+    if amplitude > 0 and not max_step > 0:
+        raise InputError(f"motion.dW = {max_step} mm: must be > 0")
+    if int(periods) < 0:
+        raise InputError(f"motion.periods = {periods}: must be >= 0")
+    force = np.asarray(force, dtype=float)
+    forces = [np.zeros(2)]
+    if np.any(force != 0):
+        forces += [force * (k + 1) / ramp_steps for k in range(ramp_steps)]
+    for level in levels:
+        start = forces[-1]
+        level = np.asarray(level, dtype=float)
+        forces += [start + (level - start) * (k + 1) / ramp_steps for k in range(ramp_steps)]
+    n_load = len(forces)
+    centres = [np.zeros(2)] * n_load
+    period = [0] * n_load
+    reversal = [False] * n_load
+    dW = 0.0
+    if amplitude > 0 and periods > 0:
+        nq = math.ceil(amplitude / max_step - 1e-9)
+        dW = amplitude / nq
+        e = np.asarray(rolling_direction, dtype=float)
+        e = e / np.linalg.norm(e)
+        # one period: 0 -> +W -> 0 -> -W -> 0, positions s_k = dW * tri(k), k = 1..4 nq
+        k = np.arange(1, 4 * nq + 1)
+        s = np.where(k <= nq, k, np.where(k <= 3 * nq, 2 * nq - k, k - 4 * nq)) * dW
+        rev = (k == nq) | (k == 3 * nq) | (k == 4 * nq)
+        for p in range(1, int(periods) + 1):
+            centres += [si * e for si in s]
+            forces += [forces[n_load - 1]] * len(s)
+            period += [p] * len(s)
+            reversal += list(rev)
+    return LoadPath(np.array(centres), np.array(forces), np.array(period, dtype=int),
+                    np.array(reversal, dtype=bool), dW)
+
+
+@dataclass
+class StepState:
+    """What the next step needs: the last completed step's fields and the accumulated rigid shift.
+
+    A run continued from a stored StepState reproduces the uninterrupted run to solver tolerance.
+    """
+
+    step: int                       # index of the last completed step (-1: nothing done yet)
+    pressure: np.ndarray            # (ny, nx) MPa
+    traction: np.ndarray            # (2, ny, nx) MPa
+    rigid_shift: np.ndarray         # (2,) mm, U
+    approach: float = 0.0           # mm
+
+    @classmethod
+    def initial(cls, shape) -> "StepState":
+        return cls(-1, np.zeros(shape), np.zeros((2,) + tuple(shape)), np.zeros(2), 0.0)
+
+
+@dataclass(frozen=True)
+class StepParams:
+    normal: NormalParams = field(default_factory=NormalParams)
+    tangential: TangentialParams = field(default_factory=TangentialParams)
+    coupling_tol: float = 1e-8
+    max_outer: int = 30
+
+
+@dataclass
+class StepRecord:
+    """The outcome of one step: the solver results and the state after it."""
+
+    step: int
+    centre: np.ndarray
+    normal: NormalResult
+    tangential: TangentialResult
+    state: StepState
+    outer_iterations: int
+    wall_time: float
+
+
+def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepParams(),
+             state: StepState | None = None) -> Iterator[StepRecord]:
+    """Step along `path` from `state` (default: unloaded), yielding one StepRecord per step.
+
+    op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.profiles;
+    Fn (N) constant normal force; mu friction coefficient. Raises ContactEdgeError if the contact reaches
+    the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a solver fails.
+    """
+    if not (Fn > 0):
+        raise InputError(f"load.Fn = {Fn} N: must be > 0")
+    if not (mu > 0):
+        raise InputError(f"load.mu = {mu}: must be > 0")
+    X, Y = op.grid.mesh()
+    state = StepState.initial(op.grid.shape) if state is None else state
+    for n in range(state.step + 1, path.n_steps):
+        t0 = time.perf_counter()
+        centre = path.centres[n]
+        h = profile(X, Y, centre)
+        normal, tangential, outer = solve_coupled_step(
+            op, h, Fn, path.forces[n], state.pressure, state.traction, mu=mu,
+            normal_params=params.normal, tangential_params=params.tangential,
+            coupling_tol=params.coupling_tol, max_outer=params.max_outer)
+        _check_inside(normal.contact, n, centre)
+        state = StepState(n, normal.pressure, tangential.traction,
+                          state.rigid_shift + tangential.shift_increment, normal.approach)
+        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0)
+
+
+def _check_inside(contact, step, centre):
+    edge = contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any() or contact[:, -1].any()
+    if edge:
+        raise ContactEdgeError(
+            f"step {step}: the contact (sphere centre at ({centre[0]:.4g}, {centre[1]:.4g}) mm) reached the "
+            "edge of the grid; enlarge grid.margin or check the load (a larger Fn than the grid was "
+            "sized for)")
