@@ -236,8 +236,10 @@ def format_summary(outcome: RunOutcome) -> str:
                         f"(Hertz p0 = {s['p0']:.5f} MPa)")
         lines.append(f"contact radius {a_eq:.4f} mm (equivalent; Hertz a = {s['a']:.4f} mm), approach "
                      f"{h['approach'][-1]:.6f} mm (Hertz d = {s['d']:.6f} mm){pressure}")
+        model = (f"MDR model, {s['springs']} springs" if s.get("fidelity") == "mdr"
+                 else f"grid {s['nx']} x {s['ny']}")
         lines.append(f"steps {s['steps']}/{s['steps_planned']}, iterations {s['iterations']} "
-                     f"(normal + tangential), grid {s['nx']} x {s['ny']}, wall time {outcome.wall_time:.2f} s")
+                     f"(normal + tangential), {model}, wall time {outcome.wall_time:.2f} s")
     if "u_stat" in s:
         lines.append(f"f_t = {s['f_t']:.4g}: U_stat = {s['U_stat']:.6f} mm, u_stat = {s['u_stat']:.5f}")
     state = s.get("state", "?")
