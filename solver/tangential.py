@@ -66,6 +66,7 @@ Force balance and |tau| <= g hold to round-off by construction.
 """
 from dataclasses import dataclass
 import math
+import weakref
 
 import numpy as np
 
@@ -75,11 +76,27 @@ from . import _tangential_kernels as K
 #: Relative margin below the friction capacity sum g dA: a force within this of the capacity is gross
 #: sliding (the stick zone would be far below one element and the problem has no usable solution).
 CAPACITY_MARGIN = 1e-9
-_RESYNC_ON_CLIP = True
 #: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
 _MAX_TURN = 0.5
-_RELEASE_RATIO = math.inf  # release as soon as the multiplier says so (TangCG rule)
-_RELEASE_FRACTION = 0.0
+
+#: Product memo: per operator, the last two converged (traction, A^tt traction) pairs. The next rolling step
+#: passes the previous traction back as tau', so A tau' is free when tau' is bit-for-bit a stored traction.
+#: The carried u drifts by round-off only; it is recomputed by FFT after _MEMO_REUSES reuses.
+_product_memo = weakref.WeakKeyDictionary()
+_MEMO_REUSES = 32
+
+
+def _memo_lookup(op, tau):
+    """(A tau, reuses) from the memo if tau equals a stored traction exactly, else (None, 0)."""
+    for stored, u, reuses in _product_memo.get(op, ()):
+        if reuses < _MEMO_REUSES and stored.shape == tau.shape and np.array_equal(stored, tau):
+            return u, reuses + 1
+    return None, 0
+
+
+def _memo_store(op, tau, u, reuses):
+    entries = [e for e in _product_memo.get(op, ()) if not np.array_equal(e[0], tau)]
+    _product_memo[op] = [(tau.copy(), u.copy(), reuses)] + entries[:1]
 
 
 @dataclass(frozen=True)
@@ -172,7 +189,8 @@ class _Workspace:
 
 
 def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, initial=None,
-                     extra_slip=None, params=TangentialParams()) -> "TangentialResult":
+                     extra_slip=None, previous_displacement=None,
+                     params=TangentialParams()) -> "TangentialResult":
     """Solve one step of the transient tangential problem (theory.md §5.1).
 
     Parameters
@@ -185,6 +203,10 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         Exactly one of `force` and `shift` must be given.
     initial : optional (2, ny, nx) warm-start traction (MPa); default tau' projected onto the new discs.
     extra_slip : optional (2, ny, nx) slip (mm) added to s, e.g. the coupling term A^tz (p - p').
+    previous_displacement : optional (2, ny, nx) u' = A^tt tau' (mm), the previous step's
+        `TangentialResult.displacement` minus its extra slip; saves the product A tau'. Without it the
+        product is taken from the solver's memo when tau' is the traction of a recent solve on `op`
+        (the rolling case), else computed.
     params : TangentialParams.
 
     Returns TangentialResult; raises GrossSlidingError when |F| >= sum g dA (no equilibrium) and
@@ -235,8 +257,19 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         op.tangential(field[0], field[1], out=out)
 
     # --- previous displacement and starting traction -----------------------------------------------
-    if np.any(tau_p):
-        matvec(tau_p, u_prev)
+    memo_reuses = 0
+    if previous_displacement is not None:
+        u_given = np.asarray(previous_displacement, dtype=float)
+        if u_given.shape != (2,) + shape or not np.all(np.isfinite(u_given)):
+            raise InputError(f"previous_displacement: shape {u_given.shape} (expected {(2,) + shape}) and "
+                             "finite values (mm) required")
+        u_prev[...] = u_given
+    elif np.any(tau_p):
+        memo, memo_reuses = _memo_lookup(op, tau_p)
+        if memo is not None:
+            u_prev[...] = memo
+        else:
+            matvec(tau_p, u_prev)
     if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
         return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, 0, 0.0, True, force_mode)
     tau[...] = tau_p if initial is None else np.asarray(initial, dtype=float)
@@ -245,10 +278,15 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     K.project_discs(tau, g)
     if force_mode:
         _project_on_force(tau.copy(), g, F / dA, tau)
-    if initial is None and np.array_equal(tau, tau_p):
+    if np.array_equal(tau, tau_p):
         u[...] = u_prev
     elif np.any(tau):
-        matvec(tau, u)
+        memo, reuses = _memo_lookup(op, tau)
+        if memo is not None:
+            u[...] = memo
+            memo_reuses = max(memo_reuses, reuses)
+        else:
+            matvec(tau, u)
     else:
         u[...] = 0.0
     e = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
@@ -260,6 +298,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     vq_prev = 1.0
     rmax = math.inf
     n_stick = n_slip = 0
+    release_ratio = math.inf  # release as soon as the multiplier says so (TangCG rule)
     it = 0
     while True:
         # slip of the step for the current traction and division
@@ -281,9 +320,9 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
             # back inside) only once the current face is solved better than that violation: releasing
             # on a poor multiplier estimate makes the division cycle near the traction bound.
-            if snmax <= tol * scale or rmax > _RELEASE_RATIO * snmax:
+            if snmax <= tol * scale or rmax > release_ratio * snmax:
                 break
-            K.release(tau, g, region, w, dU[0], dU[1], _RELEASE_FRACTION * snmax)
+            K.release(tau, g, region, w, dU[0], dU[1], 0.0)
             restart = True
         residual_rel = max(rmax, snmax) / scale
         if not math.isfinite(residual_rel):
@@ -293,10 +332,12 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             if synced:
                 if force_mode and not np.any(region == 1):
                     _stick_point_shift(w, g, region, dU, slip)
+                _memo_store(op, tau, u, memo_reuses)
                 return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products,
                                residual_rel, True, force_mode)
             matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
             synced = True
+            memo_reuses = 0
             restart = True
             continue
         if products >= params.max_iter:
@@ -341,9 +382,10 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         synced = synced and dmax == 0.0
         if force_mode and (dsx != 0.0 or dsy != 0.0):
             _restore_force(tau, region, g, F / dA, u, axx, ayy)
-        if n_clip > 0 and _RESYNC_ON_CLIP:
+        if n_clip > 0:
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             synced = True
+            memo_reuses = 0
         it += 1
 
 

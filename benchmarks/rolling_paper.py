@@ -1,0 +1,111 @@
+"""Rolling at the paper's resolution: cost per rolling step of the nested normal/tangential iteration.
+
+    .venv/bin/python benchmarks/rolling_paper.py [--repeats 3] [--out benchmarks/results/rolling_paper.json]
+
+The seed scene (`cases.scene.default_scene`, dx = dW = 0.2 mm, 10 periods) in both settings
+(motion.angle = 0: rolling parallel to Ft; 90: perpendicular) at (f_t, w) = (0.46, 0.23) (shakedown) and
+(0.77, 0.23) (ratcheting), one FFTW thread. For each case: the wall time of the whole `run_scene` (median of
+--repeats, after one warm-up run that pays numba loading and FFTW planning), the number of steps, normal and
+tangential iterations per step (each iteration = one `op.normal` resp. one `op.tangential` product), and the
+product times measured in the same run on the same grid:
+
+* t_n  = one `op.normal` (one padded forward + inverse real FFT: "the convolution pair");
+* t_t  = one `op.tangential` (two forward + two inverse: about two pairs).
+
+floor = sum over steps of (normal iterations x t_n + tangential iterations x t_t), i.e. what the FFT products
+alone cost; ratio = wall time / floor (target <= 2). The table also gives the ratio against the simpler
+floor (all products x t_n). Timings on a shared 2-core machine: medians, still noisy by 10-20 %.
+"""
+import argparse
+import json
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from cases.run import run_scene, scene_grid, scene_path
+from cases.scene import default_scene
+from bem.operator import HalfSpaceOperator
+
+CASES = [("parallel", 0, 0.46), ("perpendicular", 90, 0.46), ("parallel", 0, 0.77), ("perpendicular", 90, 0.77)]
+
+
+def product_times(scene, repeats=50):
+    path = scene_path(scene)
+    grid = scene_grid(scene, path)
+    op = HalfSpaceOperator(grid, scene.material_pair, threads=1)
+    rng = np.random.default_rng(0)
+    p = rng.random(grid.shape)
+    tx, ty = rng.random((2,) + grid.shape)
+    out1, out2 = np.empty(grid.shape), np.empty((2,) + grid.shape)
+
+    def med(fn):
+        ts = []
+        for _ in range(repeats):
+            t = time.perf_counter()
+            fn()
+            ts.append(time.perf_counter() - t)
+        return statistics.median(ts)
+
+    return grid, med(lambda: op.normal(p, out=out1)), med(lambda: op.tangential(tx, ty, out=out2))
+
+
+def run_case(angle, ft, repeats, tmp):
+    scene = default_scene().with_overrides([f"motion.angle={angle}", f"load.ft={ft}", "motion.w=0.23",
+                                            "output.fields=last"])
+    run_scene(scene, Path(tmp) / "warm.h5")  # warm-up: numba cache, FFTW wisdom
+    walls, t_n, t_t = [], [], []
+    data = None
+    for k in range(repeats):
+        grid, tn, tt = product_times(scene)
+        t_n.append(tn)
+        t_t.append(tt)
+        t = time.perf_counter()
+        out = run_scene(scene, Path(tmp) / f"run{k}.h5")
+        walls.append(time.perf_counter() - t)
+        data = out.data
+    h = data.history
+    n_it = np.asarray(h["normal_iterations"])
+    t_it = np.asarray(h["tangential_iterations"])
+    steps = len(n_it)
+    wall = statistics.median(walls)
+    tn, tt = statistics.median(t_n), statistics.median(t_t)
+    floor = n_it.sum() * tn + t_it.sum() * tt
+    s = data.summary
+    return dict(angle=angle, f_t=ft, state=s.get("state"), u_sd=s.get("u_sd"), du=s.get("du"),
+                grid=f"{grid.nx}x{grid.ny}", steps=steps, wall_s=wall, walls=walls,
+                normal_it_per_step=float(n_it.mean()), tangential_it_per_step=float(t_it.mean()),
+                normal_it_max=int(n_it.max()), tangential_it_max=int(t_it.max()),
+                pair_ms=tn * 1e3, tangential_product_ms=tt * 1e3, floor_s=floor, ratio=wall / floor,
+                ratio_all_pairs=wall / ((n_it.sum() + t_it.sum()) * tn),
+                solver_time_s=float(np.sum(h["wall_time"])))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "rolling_paper.json"))
+    ap.add_argument("--only", type=int, default=None, help="run only case index 0..3")
+    args = ap.parse_args()
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, (name, angle, ft) in enumerate(CASES):
+            if args.only is not None and i != args.only:
+                continue
+            row = run_case(angle, ft, args.repeats, tmp)
+            row["setting"] = name
+            rows.append(row)
+            print(f"{name:13s} f_t={ft:.2f} {row['state']:>10s} u_sd={row['u_sd']} grid {row['grid']} "
+                  f"steps {row['steps']} wall {row['wall_s']:.2f} s (runs {', '.join(f'{w:.2f}' for w in row['walls'])}) "
+                  f"it/step n {row['normal_it_per_step']:.1f} t {row['tangential_it_per_step']:.1f} "
+                  f"(max {row['normal_it_max']}/{row['tangential_it_max']}) pair {row['pair_ms']:.3f} ms "
+                  f"tprod {row['tangential_product_ms']:.3f} ms floor {row['floor_s']:.2f} s "
+                  f"ratio {row['ratio']:.2f} (all-pairs {row['ratio_all_pairs']:.2f})", flush=True)
+    if args.only is None:
+        Path(args.out).write_text(json.dumps(rows, indent=1))
+
+
+if __name__ == "__main__":
+    main()
