@@ -57,6 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
         limits_cmd = None
     if limits_cmd is not None:
         limits_cmd.register(sub)
+    from . import sweep_cmd; sweep_cmd.register(sub)
     return parser
 
 
