@@ -58,6 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
     if limits_cmd is not None:
         limits_cmd.register(sub)
     from . import sweep_cmd; sweep_cmd.register(sub)
+    from . import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
     return parser
 
 
