@@ -49,8 +49,13 @@ the product A tau' and the re-synchronisations), so it is the honest cost in con
 Safeguards: a slip traction may turn by at most _MAX_TURN g per iteration (trust region of the
 linearised rotation); when no element is left in stick (stick zone below one element, f_t -> 1), the
 reported dU is the displacement of the sub-element stick point (see `_stick_point_shift`).
-Known limitation (benchmarks/README.md): on fine grids (217^2) a cold solve from zero traction close to the
-bound (f_t >= 0.95) can cycle between release and projection and ends in ConvergenceError.
+Cycling safeguard: a cold solve close to the bound on fine grids (217^2, f_t >= 0.95) used to cycle between
+release and projection. When the best exact residual has not halved for _STALL_PRODUCTS products, releases
+become conservative (only once the face residual is below the violation); if that stalls too, the iteration
+returns to the best exact iterate. When an exact re-synchronisation finds the residual far above the
+tolerance (drift of the self-coefficient updates on dense slip areas), u is kept exact from then on.
+Product memo: A tau' is taken from the previous solve when tau' is its traction (rolling), see
+`previous_displacement`.
 
 `TangentialResult.displacement` is A tau plus `extra_slip` when that is given (the issue's convention).
 
@@ -84,6 +89,10 @@ _MAX_TURN = 0.5
 #: The carried u drifts by round-off only; it is recomputed by FFT after _MEMO_REUSES reuses.
 _product_memo = weakref.WeakKeyDictionary()
 _MEMO_REUSES = 32
+#: Safeguard 1: products without halving the best exact residual before releases become conservative.
+_STALL_PRODUCTS = 30
+#: Safeguard 2: an exact re-synchronisation that finds the residual above _SYNC_JUMP tol switches to exact u.
+_SYNC_JUMP = 100.0
 
 
 def _memo_lookup(op, tau):
@@ -112,6 +121,12 @@ class TangentialParams:
 
     tol: float = 1e-8
     max_iter: int = 500
+
+    def __post_init__(self):
+        if not (isinstance(self.tol, (int, float)) and math.isfinite(self.tol) and 0.0 < self.tol < 1.0):
+            raise InputError(f"TangentialParams.tol = {self.tol!r}: must satisfy 0 < tol < 1")
+        if isinstance(self.max_iter, bool) or int(self.max_iter) != self.max_iter or self.max_iter < 1:
+            raise InputError(f"TangentialParams.max_iter = {self.max_iter!r}: must be an integer >= 1")
 
 
 @dataclass
@@ -298,7 +313,11 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     vq_prev = 1.0
     rmax = math.inf
     n_stick = n_slip = 0
-    release_ratio = math.inf  # release as soon as the multiplier says so (TangCG rule)
+    release_ratio = math.inf  # release as soon as the multiplier says so (TangCG rule), see safeguard 1
+    exact = exact_after_sync = False  # see safeguard 2
+    tau_best, u_best = tau.copy(), u.copy()
+    stage = 0
+    best, best_at, released = math.inf, 0, 0
     it = 0
     while True:
         # slip of the step for the current traction and division
@@ -322,12 +341,34 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             # on a poor multiplier estimate makes the division cycle near the traction bound.
             if snmax <= tol * scale or rmax > release_ratio * snmax:
                 break
-            K.release(tau, g, region, w, dU[0], dU[1], 0.0)
+            released += K.release(tau, g, region, w, dU[0], dU[1], 0.0)
             restart = True
         residual_rel = max(rmax, snmax) / scale
         if not math.isfinite(residual_rel):
             raise ConvergenceError("non-finite residual in the tangential solver", solver="tangential",
                                    iterations=products, regime=_regime(force, capacity, region))
+        if synced and residual_rel < 0.5 * best:
+            best, best_at, released = residual_rel, products, 0
+            tau_best[...] = tau
+            u_best[...] = u
+        elif products - best_at > _STALL_PRODUCTS and stage < 2:
+            # Safeguard 1 (cycling of the division, f_t -> 1 on fine grids), when the best exact residual
+            # has not halved for _STALL_PRODUCTS products: first release a slip element only once the
+            # current face is solved better than its violation (BCCG's rule); if that stalls too, go
+            # back to the best exact iterate and continue from there with that rule.
+            stage += 1
+            release_ratio, best_at, restart = 1.0, products, True
+            if stage == 2:
+                tau[...] = tau_best
+                u[...] = u_best
+                synced = True
+                continue
+        if synced and exact_after_sync and residual_rel >= _SYNC_JUMP * tol:
+            # Safeguard 2: the exact re-synchronisation revealed that the self-coefficient updates of the
+            # renormalisations had drifted (dense slip areas on fine grids, where sum_J A_IJ ~ sqrt(N) a_self):
+            # keep u exact after every step from now on.
+            exact = True
+        exact_after_sync = False
         if residual_rel < tol:
             if synced:
                 if force_mode and not np.any(region == 1):
@@ -337,6 +378,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                                residual_rel, True, force_mode)
             matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
             synced = True
+            exact_after_sync = True
             memo_reuses = 0
             restart = True
             continue
@@ -382,7 +424,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         synced = synced and dmax == 0.0
         if force_mode and (dsx != 0.0 or dsy != 0.0):
             _restore_force(tau, region, g, F / dA, u, axx, ayy)
-        if n_clip > 0:
+        if n_clip > 0 or (exact and dmax > 0.0):
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             synced = True
             memo_reuses = 0

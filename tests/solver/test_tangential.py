@@ -196,3 +196,31 @@ def test_inputs_validated(scene):
 def test_traction_capacity_is_mu_fn(scene):
     """sum(mu p) dA = mu Fn (the normal solver holds the force exactly)."""
     assert traction_capacity(scene.bound, scene.grid) == pytest.approx(MU * FN, rel=1e-9)
+
+
+@pytest.mark.parametrize("kwargs", [dict(tol=0.0), dict(tol=1.5), dict(tol=float("nan")), dict(max_iter=0),
+                                    dict(max_iter=2.5)])
+def test_tangential_params_are_validated_naming_the_parameter(kwargs):
+    name = next(iter(kwargs))
+    with pytest.raises(InputError, match=f"TangentialParams.{name}"):
+        TangentialParams(**kwargs)
+
+
+@pytest.mark.parametrize("f_t", [0.95, 0.99, 0.999])
+def test_cold_solve_near_the_bound_converges_on_the_fine_grid(fine_scene, f_t):
+    """Used to cycle between release and projection on fine grids; shift within 0.5 % of Mindlin (P10, P12).
+    Alignment as in test_near_traction_bound_shift_stays_accurate (stick-point shift at 0.999)."""
+    res = fine_scene.cattaneo(f_t)
+    check_invariants(res, fine_scene.bound, fine_scene.grid, force=(f_t * MU * FN, 0.0), alignment=0.99)
+    assert abs(res.shift_increment[0] / MINDLIN.shift(f_t) - 1) < 5e-3
+
+
+def test_previous_displacement_and_memo_give_the_same_step(scene):
+    first = scene.cattaneo(0.5)
+    g = scene.bound
+    F = (0.52 * MU * FN, 0.0)
+    given = solve_tangential(scene.op, g, first.traction, force=F, previous_displacement=first.displacement)
+    computed = solve_tangential(scene.op, g, first.traction.copy() + 0.0, force=F,
+                                previous_displacement=scene.op.tangential(*first.traction))
+    np.testing.assert_allclose(given.shift_increment, computed.shift_increment, rtol=1e-7)
+    np.testing.assert_allclose(given.traction, computed.traction, atol=1e-7 * g.max())
