@@ -30,6 +30,9 @@ PARALLEL_COLOUR = "#1f5fa8"        # W parallel to Ft (seed "(1)")
 PERPENDICULAR_COLOUR = "#c8312b"   # W perpendicular to Ft (seed "(2)")
 MDR_COLOUR = "0.45"                # pure MDR, kappa = 3/2 (seed Eq. 12)
 DPI = 120                          # PNG resolution; PDFs are vector
+#: Figure sizes (inches); PNGs are FIGSIZE * DPI pixels (no tight bounding box, so the size is predictable).
+FIGSIZE = {"history": (8, 6), "maps": (14, 8.5), "centrelines": (12, 7.5), "compare_maps": (24, 11.5),
+           "usd": (9, 6.5), "limits": (8, 6.5), "ratcheting": (8, 6)}
 BOUND_TOL = 0.98                   # |tau| >= BOUND_TOL mu p_min counts as "at the bound" (region II)
 
 #: Seed regions of the shaken-down contact (Sect. 3.2) plus slip and no contact; codes of `seed_regions`.
@@ -307,6 +310,7 @@ def save_figure(fig, out_dir, stem) -> list[Path]:
     out_dir.mkdir(parents=True, exist_ok=True)
     paths = [out_dir / f"{stem}.png", out_dir / f"{stem}.pdf"]
     fig.savefig(paths[0], dpi=DPI)
+    fig.set_layout_engine("none")       # keep the layout just computed: the PDF needs no second pass
     fig.savefig(paths[1])
     plt.close(fig)
     return paths

@@ -20,8 +20,8 @@ from matplotlib.patches import Patch
 
 from solver import mdr_limits as lim
 
-from .plots import (MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR, REGION_COLOURS, REGION_NAMES, PlotError,
-                    RunView, centre_line, save_figure)
+from .plots import (FIGSIZE, MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR, REGION_COLOURS, REGION_NAMES,
+                    PlotError, RunView, centre_line, save_figure)
 
 KAPPAS = ((lim.KAPPA_PARALLEL, "κ = 1 (Eq. 15)", PARALLEL_COLOUR),
           (lim.KAPPA_PERPENDICULAR, "κ = 1.1 (Eq. 16)", PERPENDICULAR_COLOUR),
@@ -34,7 +34,7 @@ REGION_NORM = BoundaryNorm(np.arange(-0.5, len(REGION_COLOURS)), len(REGION_COLO
 # ------------------------------------------------------------------------------------------ history
 def history_figure(views: list[RunView]):
     """u = U/U0 (along Ft) versus periods for one or more runs, with u_stat, u_sd, MDR u_sd (seed Fig. 4)."""
-    fig, (ax, ax2) = plt.subplots(2, 1, figsize=(8, 6), sharex=True, height_ratios=(3, 1.2),
+    fig, (ax, ax2) = plt.subplots(2, 1, figsize=FIGSIZE["history"], sharex=True, height_ratios=(3, 1.2),
                                   layout="constrained")
     extra = []
     done = set()
@@ -184,7 +184,7 @@ def _step_label(view, step):
 
 def maps_figure(view: RunView, step: int):
     """Maps of one run at a stored step (seed Figs. 5-6)."""
-    fig, axes = plt.subplots(2, 3, figsize=(14, 8.5), layout="constrained")
+    fig, axes = plt.subplots(2, 3, figsize=FIGSIZE["maps"], layout="constrained")
     lims = _map_limits([view], [step])
     _map_panels(axes.ravel(), view, step, lims, fig=fig)
     fig.suptitle(f"{view.title}\n{_step_label(view, step)}", fontsize=11)
@@ -197,9 +197,11 @@ def _shade_regions(ax, s, codes):
     if len(s) < 2:
         return
     edges = np.concatenate([[s[0] - (s[1] - s[0]) / 2], (s[1:] + s[:-1]) / 2, [s[-1] + (s[-1] - s[-2]) / 2]])
-    for k in range(1, len(REGION_COLOURS)):
-        for i in np.flatnonzero(codes == k):
-            ax.axvspan(edges[i], edges[i + 1], color=REGION_COLOURS[k], alpha=0.18, lw=0)
+    starts = np.flatnonzero(np.diff(codes, prepend=-1))        # one span per run of equal codes
+    ends = np.append(starts[1:], len(codes))
+    for i, j in zip(starts, ends):
+        if codes[i] > 0:
+            ax.axvspan(edges[i], edges[j], color=REGION_COLOURS[codes[i]], alpha=0.18, lw=0)
 
 
 def _profile_axes(fig, axes, a):
@@ -214,7 +216,7 @@ def _profile_axes(fig, axes, a):
 
 def profiles_figure(views: list[RunView], steps: list[int]):
     """tau_x/mu p0 and u_x/U0 along and across the rolling direction through the sphere centre."""
-    fig, axes = plt.subplots(2, 2, figsize=(12, 7.5), sharex="col", layout="constrained")
+    fig, axes = plt.subplots(2, 2, figsize=FIGSIZE["centrelines"], sharex="col", layout="constrained")
     single = len(views) == 1
     for v, step in zip(views, steps):
         f = v.normalised_fields(step)
@@ -288,7 +290,7 @@ def _embed(values, shape, offset, fill):
 
 def compare_maps_figure(va: RunView, sa: int, vb: RunView, sb: int):
     """Maps of A and B on shared colour scales and B - A with a diverging map (common world-fixed grid)."""
-    fig, axes = plt.subplots(3, 6, figsize=(24, 11.5), layout="constrained")
+    fig, axes = plt.subplots(3, 6, figsize=FIGSIZE["compare_maps"], layout="constrained")
     lims = _map_limits([va, vb], [sa, sb])
     extent = (min(va.data.x[0], vb.data.x[0]), max(va.data.x[-1], vb.data.x[-1]),
               min(va.data.y[0], vb.data.y[0]), max(va.data.y[-1], vb.data.y[-1]))

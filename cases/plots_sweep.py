@@ -27,8 +27,8 @@ from matplotlib.lines import Line2D
 
 from solver import mdr_limits as lim
 
-from .plots import MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR, PlotError, save_figure, setting_colour, \
-    setting_of
+from .plots import (FIGSIZE, MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR, PlotError, save_figure,
+                    setting_colour, setting_of)
 from .scene import Scene
 
 MARKERS = {"parallel": "o", "perpendicular": "^"}
@@ -215,7 +215,7 @@ def format_fit(fit) -> str:
 # ------------------------------------------------------------------------------------------ figures
 def usd_figure(points, title):
     """u_sd versus f_t (seed Fig. 8)."""
-    fig, ax = plt.subplots(figsize=(9, 6.5), layout="constrained")
+    fig, ax = plt.subplots(figsize=FIGSIZE["usd"], layout="constrained")
     ws = sorted({round(p.w, 6) for p in points if p.w > 0})
     f = np.linspace(0, 1, 401)
     ax.plot(f, lim.u_stat(f), "-", color="k", lw=1.0)
@@ -264,7 +264,7 @@ def usd_figure(points, title):
 
 def limits_figure(points, limits, title):
     """w_lim versus f_t,lim (seed Fig. 9) with every run as a marker in the (f_t, w) plane."""
-    fig, ax = plt.subplots(figsize=(8, 6.5), layout="constrained")
+    fig, ax = plt.subplots(figsize=FIGSIZE["limits"], layout="constrained")
     w = np.linspace(0, 1, 300)
     for kappa, ls, colour, label in CURVES:
         ax.plot(lim.f_t_lim(w, kappa), w, ls, color=colour, lw=1.5 if kappa != lim.KAPPA_MDR else 0.9,
@@ -296,7 +296,7 @@ def limits_figure(points, limits, title):
 
 def ratcheting_figure(points, title):
     """du per period versus f_t beyond the limit (seed Fig. 11) with the regressions Eqs. 20-21."""
-    fig, ax = plt.subplots(figsize=(8, 6), layout="constrained")
+    fig, ax = plt.subplots(figsize=FIGSIZE["ratcheting"], layout="constrained")
     rat = [p for p in points if p.state in ("ratcheting", "undecided") and p.du is not None]
     ws = sorted({round(p.w, 6) for p in points if p.w > 0})
     f = np.linspace(0, 0.999, 300)
@@ -341,8 +341,10 @@ def plot_folder(folder, out_dir=None, notes=None, out=print) -> list:
     if limits_path.exists() and not limits and notes is not None:
         notes.append(f"{limits_path}: no rows with recognisable w and f_t columns; not drawn")
     title = folder.resolve().name
-    for g, fit in kappa_fits(points).items():
-        out(f"fitted kappa (seed Eq. 13), {g}: {format_fit(fit)}")
+    fits = kappa_fits(points)
+    for g in sorted({p.group for p in points}):
+        out(f"fitted kappa (seed Eq. 13), {g}: " + (format_fit(fits[g]) if g in fits
+                                                   else "no shaken-down run with w > 0, no fit"))
     stem = folder.resolve().name
     paths = save_figure(usd_figure(points, title), out_dir, f"{stem}_usd")
     paths += save_figure(limits_figure(points, limits, title), out_dir, f"{stem}_limits")
