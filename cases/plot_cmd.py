@@ -26,7 +26,7 @@ def _report(paths, notes) -> int:
     for n in notes:
         print(f"note: {n}")
     for p in paths:
-        print(p)
+        print(Path(p).resolve())
     return 0
 
 

@@ -319,6 +319,6 @@ def save_figure(fig, out_dir, stem) -> list[Path]:
 def _compact(steps) -> str:
     """'1, 7, 19, ... 241 (31 steps)' for long lists."""
     steps = list(steps)
-    if len(steps) <= 12:
+    if len(steps) <= 40:
         return ", ".join(map(str, steps))
     return ", ".join(map(str, steps[:8])) + ", ..., " + ", ".join(map(str, steps[-3:])) + f" ({len(steps)} steps)"
