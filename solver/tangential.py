@@ -92,7 +92,7 @@ _MEMO_REUSES = 32
 #: Safeguard 1: products without halving the best exact residual before releases become conservative.
 _STALL_PRODUCTS = 30
 #: Safeguard 2: an exact re-synchronisation that finds the residual above _SYNC_JUMP tol switches to exact u.
-_SYNC_JUMP = 100.0
+_SYNC_JUMP = 1e4
 
 
 def _memo_lookup(op, tau):
