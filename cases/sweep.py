@@ -382,8 +382,11 @@ def _csv_parse(k, v):
 
 
 # ------------------------------------------------------------------------------------- execution
-def _worker_init():
-    """Worker set-up: one BLAS/numba thread, and exit if the parent dies (e.g. SIGKILL of the sweep)."""
+def _worker_init(sweep_pid: int):
+    """Worker set-up: one BLAS/numba thread, and exit if the sweep process dies (e.g. SIGKILL).
+
+    With 'forkserver' the worker's parent is the fork server, which outlives a killed sweep, so the sweep's
+    own pid is watched (twice a second) besides the parent's."""
     for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
         os.environ[var] = "1"
     try:
@@ -397,7 +400,7 @@ def _worker_init():
     def watch():
         while True:
             time.sleep(0.5)
-            if os.getppid() != parent:
+            if os.getppid() != parent or not _pid_alive(sweep_pid):
                 os._exit(1)
     threading.Thread(target=watch, daemon=True).start()
 
@@ -411,7 +414,8 @@ class _LocalPool:
         ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
         if ctx.get_start_method() == "forkserver":
             ctx.set_forkserver_preload(["cases.run", "cases.sweep"])
-        self.executor = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init)
+        self.executor = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init,
+                                            initargs=(os.getpid(),))
 
     def submit(self, fn, *args):
         return self.executor.submit(fn, *args)
