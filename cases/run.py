@@ -51,11 +51,13 @@ def scene_path(scene: Scene) -> LoadPath:
                       max_step=scene.motion.dW, periods=scene.motion.periods)
 
 
-def scene_grid(scene: Scene, path: LoadPath) -> Grid:
+def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     """Grid just large enough for every contact the path can produce, plus the scene's margin.
 
     The Hertz semi-axes of an ellipse are estimated from the equivalent sphere, c (Rx/Ry)^(+-1/3), with
-    a 10 % allowance; the run stops with ContactEdgeError if a contact still reaches the edge.
+    a 10 % allowance; the run stops with ContactEdgeError if a contact still reaches the edge. Without a
+    path, the centres are the extremes of the scene's oscillation (0 and +-W along the rolling direction),
+    so an over-large scene is refused (InputError, bem.grid.MAX_ELEMENTS) before its path is built.
     """
     rx, ry = scene.radii
     c = scene.contact_radius
@@ -63,7 +65,14 @@ def scene_grid(scene: Scene, path: LoadPath) -> Grid:
     if rx == ry:
         semi_x = semi_y = c
     dx, dy = scene.spacing
-    return Grid.covering(*contact_box(semi_x, semi_y, path.centres, scene.grid.margin), dx, dy)
+    if path is not None:
+        centres = path.centres
+    elif scene.amplitude > 0 and scene.motion.periods > 0:
+        reach = scene.amplitude * np.array(scene.rolling_direction)
+        centres = np.array([(0.0, 0.0), reach, -reach])
+    else:
+        centres = np.zeros((1, 2))
+    return Grid.covering(*contact_box(semi_x, semi_y, centres, scene.grid.margin), dx, dy)
 
 
 def field_steps(scene: Scene, path: LoadPath) -> np.ndarray:
@@ -87,12 +96,15 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
     """Run `scene` and write the results to `out` (HDF5). Returns the outcome (also on failure).
 
     progress: callable(message) for progress lines (None: silent). restart / restart_history: continue
-    from a stored step (see `load_state`).
+    from a stored step (see `load_state`). A scene that cannot be discretised (grid over the element
+    limit) raises InputError before anything is computed or written; a failure during the run writes the
+    finished steps with status 'failed'.
     """
     if scene.solver.fidelity == "mdr":
         from .run_mdr import run_scene_mdr
         return run_scene_mdr(scene, out, progress=progress)
     t_start = time.perf_counter()
+    scene_grid(scene)          # refuses a scene whose grid would exceed the element limit, before any work
     path = scene_path(scene)
     grid = scene_grid(scene, path)
     pair = scene.material_pair

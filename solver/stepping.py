@@ -81,26 +81,28 @@ def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), 
         level = np.asarray(level, dtype=float)
         forces += [start + (level - start) * (k + 1) / ramp_steps for k in range(ramp_steps)]
     n_load = len(forces)
-    centres = [np.zeros(2)] * n_load
-    period = [0] * n_load
-    reversal = [False] * n_load
+    centres = [np.zeros((n_load, 2))]
+    forces = [np.array(forces)]
+    period = [np.zeros(n_load, dtype=int)]
+    reversal = [np.zeros(n_load, dtype=bool)]
     dW = 0.0
     if amplitude > 0 and periods > 0:
         nq = math.ceil(amplitude / max_step - 1e-9)
         dW = amplitude / nq
         e = np.asarray(rolling_direction, dtype=float)
         e = e / np.linalg.norm(e)
-        # one period: 0 -> +W -> 0 -> -W -> 0, positions s_k = dW * tri(k), k = 1..4 nq
+        # one period: 0 -> +W -> 0 -> -W -> 0, positions s_k = dW * tri(k), k = 1..4 nq (vectorised: a
+        # long path costs memory in proportion to its steps, nothing more)
         k = np.arange(1, 4 * nq + 1)
         s = np.where(k <= nq, k, np.where(k <= 3 * nq, 2 * nq - k, k - 4 * nq)) * dW
         rev = (k == nq) | (k == 3 * nq) | (k == 4 * nq)
-        for p in range(1, int(periods) + 1):
-            centres += [si * e for si in s]
-            forces += [forces[n_load - 1]] * len(s)
-            period += [p] * len(s)
-            reversal += list(rev)
-    return LoadPath(np.array(centres), np.array(forces), np.array(period, dtype=int),
-                    np.array(reversal, dtype=bool), dW)
+        periods = int(periods)
+        centres.append(np.tile(s[:, None] * e[None, :], (periods, 1)))
+        forces.append(np.repeat(forces[0][-1:], periods * s.size, axis=0))
+        period.append(np.repeat(np.arange(1, periods + 1), s.size))
+        reversal.append(np.tile(rev, periods))
+    return LoadPath(np.concatenate(centres), np.concatenate(forces), np.concatenate(period),
+                    np.concatenate(reversal), dW)
 
 
 @dataclass

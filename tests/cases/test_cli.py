@@ -70,3 +70,15 @@ def test_mdr_fidelity_writes_the_same_history_layout(tmp_path):
     assert set(d.history) == set(HISTORY_NAMES)
     # MDR (kappa = 3/2 in effect) gives a larger u_sd than the 3D model at f_t 0.46, w 0.23 (theory 8.4)
     assert d.summary["state"] == "shakedown" and d.summary["u_sd"] == pytest.approx(0.4808, abs=2e-3)
+
+
+@pytest.mark.parametrize("override, message", [
+    ("motion.W=20000", "exceeds the limit of"),         # 55 x 200 001 elements > 2048^2
+    ("motion.dW=0", r"\[motion\] dW = 0.0 mm: allowed range is \(0, inf\)"),
+    ("motion.periods=-3", r"\[motion\] periods = -3: allowed range"),
+])
+def test_ill_posed_rolling_scenes_are_refused_before_any_work(tmp_path, capsys, override, message):
+    import re
+    assert main(["run", "-q", "-o", str(tmp_path / "z.h5"), "--set", override]) == 2
+    assert re.search(message, capsys.readouterr().err)
+    assert not (tmp_path / "z.h5").exists()

@@ -31,6 +31,14 @@ def test_round_trip_through_toml_text_preserves_every_key():
     assert math.isinf(back.materials.E1) and back.load.Ft == 5.5 and back.load.levels == [0.2, -0.3]
 
 
+@pytest.mark.parametrize("name", ["paper_perpendicular", "paper_parallel"])
+def test_refining_dx_of_a_shipped_scene_refines_dy_too(name):
+    # the shipped files leave dy unset, so one override changes the element size in both directions
+    s = Scene.from_toml(shipped_scene_path(name + ".toml")).with_overrides(["grid.dx=0.1"])
+    assert s.spacing == (0.1, 0.1)
+    assert s.with_overrides(["grid.dy=0.3"]).spacing == (0.1, 0.3)
+
+
 def test_a_minimal_file_takes_neutral_defaults(tmp_path):
     f = tmp_path / "hertz.toml"
     f.write_text("[geometry]\nR = 10.0\n")
