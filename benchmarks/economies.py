@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from scipy.fft import next_fast_len
+from bem.operator import fft_length
 
 from bem.operator import HalfSpaceOperator
 from cases.run import run_scene, scene_grid, scene_path
@@ -62,9 +62,9 @@ def grid_economy():
             g = scene_grid(scene, path)
             a, m, dx = scene.contact_radius, scene.grid.margin, scene.grid.dx
             n_naive = math.ceil(2 * (a + W + m) / dx) ** 2
-            padded = next_fast_len(2 * g.ny - 1, real=True) * next_fast_len(2 * g.nx - 1, real=True)
+            padded = fft_length(2 * g.ny - 1) * fft_length(2 * g.nx - 1)
             n_side = math.ceil(2 * (a + W + m) / dx)
-            padded_naive = next_fast_len(2 * n_side - 1, real=True) ** 2
+            padded_naive = fft_length(2 * n_side - 1) ** 2
             rows.append(dict(W=W, angle=angle, nx=g.nx, ny=g.ny, elements=g.size, steps=path.n_steps,
                              naive_square=n_naive, saving_vs_naive=1 - g.size / n_naive,
                              padded=padded, padded_naive=padded_naive,
