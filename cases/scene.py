@@ -70,12 +70,14 @@ class Motion:
     W: float | None = _spec(None, 0, INF, hi_open=True, unit="mm", doc="amplitude of the centre")
     angle: float = _spec(90.0, -360, 360, unit="deg", doc="rolling direction relative to Ft")
     periods: int = _spec(10, 0, 100000, doc="oscillation periods")
-    dW: float = _spec(0.2, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="largest rolling step")
+    dW: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                             doc="largest rolling step (default: the element size dx)")
 
 
 @dataclass
 class GridSpec:
-    dx: float = _spec(0.2, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="element size in x")
+    dx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                             doc="element size in x (default: the smaller Hertz semi-axis / 12, 2 digits)")
     dy: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="element size in y (default dx)")
     margin: float = _spec(0.6, 0, INF, hi_open=True, unit="mm", doc="extra width around the swept contact")
 
@@ -96,6 +98,17 @@ class Output:
                         doc="steps whose fields are stored")
 
 
+#: Elements per contact radius when a scene leaves grid.dx out (motion.dW then defaults to dx). The
+#: cheapest resolution whose shakedown displacement u_sd stays within 1 % of the converged value over the
+#: seed's Fig. 8 family (f_t 0.1-0.8, w 0.1-0.4, both alignments: worst 0.21 %); a/dx = 6 is within 1 % at
+#: the paper's point but 1.4 % off at f_t = 0.1 (benchmarks/README.md, "Accuracy against speed").
+RESOLUTION_PER_RADIUS = 12
+
+
+def _round_sig(x: float, digits: int) -> float:
+    return float(f"{x:.{digits}g}")
+
+
 SECTIONS = {"materials": Materials, "geometry": Geometry, "load": Load, "motion": Motion,
             "grid": GridSpec, "solver": SolverSpec, "output": Output}
 _ATTR = {"materials": "materials", "geometry": "geometry", "load": "load", "motion": "motion",
@@ -114,6 +127,8 @@ class Scene:
     solver: SolverSpec = field(default_factory=SolverSpec)
     output: Output = field(default_factory=Output)
     name: str = "scene"
+    #: keys filled in by `_resolve_resolution` ("grid.dx", "motion.dW"); `with_overrides` re-derives them
+    derived: frozenset = field(default=frozenset(), repr=False, compare=False)
 
     # --- construction ----------------------------------------------------------------------------
     @classmethod
@@ -136,6 +151,7 @@ class Scene:
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
         scene._check_consistency()
+        scene._resolve_resolution()
         return scene
 
     @classmethod
@@ -174,6 +190,9 @@ class Scene:
     def with_overrides(self, assignments) -> "Scene":
         """A new scene with `section.key=value` strings applied (values parsed as TOML, else as strings)."""
         data = self.to_dict()
+        for key in self.derived:  # re-derived from the overridden scene unless set explicitly
+            sec, name = key.split(".")
+            data[sec].pop(name, None)
         for item in assignments:
             if "=" not in item or "." not in item.split("=", 1)[0]:
                 raise SceneError(f"--set {item!r}: expected section.key=value, e.g. load.ft=0.5")
@@ -207,6 +226,17 @@ class Scene:
         if mo.w is not None and mo.W is not None:
             raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
 
+    def _resolve_resolution(self):
+        """Fill an omitted grid.dx and motion.dW with the recommended resolution (RESOLUTION_PER_RADIUS)."""
+        derived = set()
+        if self.grid.dx is None:
+            self.grid = replace(self.grid, dx=_round_sig(min(self.semi_axes) / RESOLUTION_PER_RADIUS, 2))
+            derived.add("grid.dx")
+        if self.motion.dW is None:
+            self.motion = replace(self.motion, dW=self.grid.dx)
+            derived.add("motion.dW")
+        self.derived = frozenset(derived)
+
     # --- derived quantities ----------------------------------------------------------------------
     @property
     def material_pair(self) -> MaterialPair:
@@ -228,6 +258,13 @@ class Scene:
     def contact_radius(self) -> float:
         """Hertz contact radius a of the equivalent sphere (mm), the unit of w."""
         return (3.0 * self.load.Fn * self.equivalent_radius / (4.0 * self.material_pair.E_star)) ** (1 / 3)
+
+    @property
+    def semi_axes(self) -> tuple[float, float]:
+        """Hertz semi-axes (mm) along x and y: exact for a sphere, c (Rx/Ry)^(+-1/3) for an ellipse."""
+        rx, ry = self.radii
+        c = self.contact_radius
+        return (c, c) if rx == ry else (c * (rx / ry) ** (1 / 3), c * (ry / rx) ** (1 / 3))
 
     @property
     def f_t(self) -> float:

@@ -629,6 +629,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         report.interrupted = True
         if pool is not None:
             pool.stop()
+            _remove_stale_temporaries(outdir, plan)  # a terminated worker cannot clean up its partial file
         write_summary(outdir, keys, rows.values(), attrs=attrs)
         if progress is not None:
             print(f"sweep: interrupted; {len(rows)} of {len(plan)} run(s) finished are in {outdir}/summary.csv; "
