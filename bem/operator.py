@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pyfftw
+from scipy.fft import next_fast_len
 
 from .errors import InputError
 from .grid import Grid
@@ -171,13 +172,15 @@ class HalfSpaceOperator:
         whose kernel is the influence coefficient at the nearest periodic offset (Strang's choice); the
         circulant is inverted exactly in Fourier space. Working on the unpadded grid costs a quarter of
         a padded convolution, so a preconditioned CG iteration costs about 1.25 convolution pairs
-        (theory.md §4.3, §5.4). The zz, xx, yy kernels are even and xy is odd in X and in Y, so all four
+        (theory.md §4.3, §5.4). Its period is scipy's next_fast_len of the grid (an odd length is kept here:
+        the circulant's period changes the preconditioner, and the near-bound tangential solves were measured
+        with these periods). The zz, xx, yy kernels are even and xy is odd in X and in Y, so all four
         symbols are real. The symbol's eigenvalues are floored at PRECONDITIONER_FLOOR of their maximum
         (a truncated 1/r kernel is not always positive definite at the highest frequencies).
         """
         g, m = self.grid, self.materials
         ny, nx = g.shape
-        sy, sx = fft_length(ny), fft_length(nx)
+        sy, sx = next_fast_len(ny, real=True), next_fast_len(nx, real=True)
         self.small = (sy, sx)
         ox = np.arange(sx) - sx * (np.arange(sx) > sx // 2)
         oy = np.arange(sy) - sy * (np.arange(sy) > sy // 2)
