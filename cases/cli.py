@@ -1,4 +1,4 @@
-"""Command line: `rollcontact run | limits | ...` (see README for the full walkthrough).
+"""Command line: `rollcontact run | limits | ...` (see the README walkthrough).
 
 Exit codes: 0 success, 1 the run failed (its partial results are still written), 2 bad input.
 """
