@@ -321,7 +321,8 @@ def chart(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(14, 5.5), gridspec_kw=dict(width_ratios=[1.5, 1]))
+    height = max(5.5, 0.16 * len(rows) + 1.2)  # one readable label line per case
+    fig, axes = plt.subplots(1, 2, figsize=(15, height), gridspec_kw=dict(width_ratios=[1.4, 1]))
     ax = axes[0]
     colours = {"converged": "tab:green", "ConvergenceError": "tab:red", "gross_sliding": "tab:orange"}
     labels = [f"{r['group']}: {r['label']}" for r in rows]
@@ -329,11 +330,11 @@ def chart(rows, path):
     col = [colours.get(r["status"], "black") for r in rows]
     y = np.arange(len(rows))
     ax.barh(y, its, color=col)
-    ax.set_yticks(y, labels, fontsize=5)
-    ax.invert_yaxis()
+    ax.set_yticks(y, labels, fontsize=7)
+    ax.set_ylim(len(rows) - 0.5, -0.5)
     ax.set_xscale("log")
     ax.set_xlabel("iterations (static: normal + tangential products; rolling: largest per step)")
-    ax.set_title("stability map: green converged, red ConvergenceError, orange gross sliding, black other")
+    ax.set_title("stability map: green converged, red ConvergenceError,\norange gross sliding, black other", fontsize=10)
     ax = axes[1]
     for angle, mk in ((90, "o-"), (0, "s--")):
         for f in (0.6, 0.7, 0.73):
@@ -347,6 +348,7 @@ def chart(rows, path):
     ax.set(xlabel="dx (mm)", ylabel="u after 15 periods", xlim=(-0.02, 0.45),
            title="near the limit (w = 0.23): u vs dx (open black: seed Eq. 13)")
     ax.legend(fontsize=7)
+    axes[1].set_box_aspect(0.8)
     fig.tight_layout()
     fig.savefig(path, dpi=80)
     plt.close(fig)
@@ -356,7 +358,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--only", default="", help="comma list of groups (default all): " + ",".join(GROUPS))
+    ap.add_argument("--replot", action="store_true", help="redraw the PNG from the stored JSON, run nothing")
     args = ap.parse_args()
+    if args.replot:
+        out = RESULTS / ("stability_quick.json" if args.quick else "stability.json")
+        chart(json.loads(out.read_text())["rows"], out.with_suffix(".png"))
+        print(f"wrote {out.with_suffix('.png')}")
+        return 0
     only = [g for g in args.only.split(",") if g] or list(GROUPS)
     out = RESULTS / ("stability_quick.json" if args.quick else "stability.json")
     old = json.loads(out.read_text())["rows"] if out.exists() and args.only else []
