@@ -23,7 +23,7 @@ from .tangential import TangentialParams, solve_tangential
 
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
-                       coupling_tol=1e-8, max_outer=50):
+                       coupling_tol=1e-8, max_outer=50, pressure_guess=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -39,6 +39,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     coupling_tol : stop when max|p_k - p_{k-1}| <= coupling_tol max p_k and
         max|tau_k - tau_{k-1}| <= coupling_tol mu max p_k.
     max_outer : Panagiotopoulos iterations before ConvergenceError.
+    pressure_guess : (ny, nx) warm start of the normal solve (MPa), e.g. the previous pressure moved with
+        the sphere (`shifted_field`); default the previous pressure. Only the start changes, not the solution.
 
     Returns (NormalResult, TangentialResult, outer_iterations).
     """
@@ -51,6 +53,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
         raise InputError(f"previous_pressure {p_prev.shape} / previous_traction {tau_prev.shape} do not "
                          f"match the grid {shape}")
     initial_p = p_prev if np.any(p_prev) else None
+    if pressure_guess is not None and np.any(pressure_guess):
+        initial_p = np.asarray(pressure_guess, dtype=float)
     if not op.coupled:
         normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, params=tangential_params)

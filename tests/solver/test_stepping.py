@@ -117,3 +117,15 @@ def test_bad_loads_are_refused(op):
         next(run_path(op, QuadricProfile(R, R), rolling_path(), Fn=0.0, mu=MU))
     with pytest.raises(InputError, match="mu"):
         next(run_path(op, QuadricProfile(R, R), rolling_path(), Fn=FN, mu=0.0))
+
+
+def test_shifted_field_translates_by_whole_cells_with_zero_fill():
+    from solver.stepping import shifted_field
+    f = np.arange(20.0).reshape(4, 5)
+    assert shifted_field(f, 0, 0) is None
+    down_right = shifted_field(f, 1, 2)
+    assert np.array_equal(down_right[1:, 2:], f[:-1, :-2])
+    assert not down_right[0].any() and not down_right[:, :2].any()
+    up_left = shifted_field(f, -1, -1)
+    assert np.array_equal(up_left[:-1, :-1], f[1:, 1:]) and not up_left[-1].any() and not up_left[:, -1].any()
+    assert not shifted_field(f, 4, 0).any()
