@@ -60,10 +60,9 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     so an over-large scene is refused (InputError, bem.grid.MAX_ELEMENTS) before its path is built.
     """
     rx, ry = scene.radii
-    c = scene.contact_radius
-    semi_x, semi_y = 1.1 * c * (rx / ry) ** (1 / 3), 1.1 * c * (ry / rx) ** (1 / 3)
-    if rx == ry:
-        semi_x = semi_y = c
+    semi_x, semi_y = scene.semi_axes
+    if rx != ry:  # the ellipse's semi-axes are estimates: 10 % allowance
+        semi_x, semi_y = 1.1 * semi_x, 1.1 * semi_y
     dx, dy = scene.spacing
     if path is not None:
         centres = path.centres

@@ -100,8 +100,8 @@ class Output:
 
 #: Elements per contact radius when a scene leaves grid.dx out (motion.dW then defaults to dx). The
 #: cheapest resolution whose shakedown displacement u_sd stays within 1 % of the converged value over the
-#: seed's Fig. 8 family (f_t 0.1-0.8, w 0.1-0.4, both alignments: worst 0.21 %); a/dx = 6 is within 1 % at
-#: the paper's point but 1.4 % off at f_t = 0.1 (benchmarks/README.md, "Accuracy against speed").
+#: seed's Fig. 8 family (its 32 shaken-down runs, both alignments: worst 0.20 %); a/dx = 6 is within 1 % at
+#: the paper's point but 1.37 % off at f_t = 0.1 (benchmarks/default_resolution.py, benchmarks/README.md).
 RESOLUTION_PER_RADIUS = 12
 
 
