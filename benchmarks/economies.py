@@ -31,9 +31,8 @@ import time
 from pathlib import Path
 
 import numpy as np
-from bem.operator import fft_length
 
-from bem.operator import HalfSpaceOperator
+from bem.operator import HalfSpaceOperator, fft_length
 from cases.run import run_scene, scene_grid, scene_path
 from cases.scene import default_scene
 from solver import mdr_limits as lim
