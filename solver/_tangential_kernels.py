@@ -5,7 +5,9 @@ All fields are (ny, nx) or (2, ny, nx) float64 arrays on the grid; `region` is i
 grid-sized array; every kernel writes into buffers owned by the caller.
 
 Notation (theory.md §5): w = A(tau - tau') + extra slip (mm), dU the rigid-shift increment (mm),
-s = w - dU the slip of the step, n = tau/|tau| and t = (-n_y, n_x) in slip elements.
+s = w - dU the slip of the step, n = tau/|tau| and t = (-n_y, n_x) in slip elements. `classify` stores
+n of the slip elements in a (2, ny, nx) buffer `nrm` that the kernels of the same iteration read (one
+square root per element and iteration instead of one per kernel); entries outside the slip area are not used.
 """
 import math
 
@@ -19,9 +21,19 @@ ON_BOUND = 1e-12
 _jit = nb.njit(cache=True, nogil=True, fastmath=False)
 
 
+@nb.njit(cache=True, inline="always")
+def _mag(x, y):
+    """|(x, y)|. Tractions (MPa) and slips (mm) are far from overflow, so the plain root serves: a third of
+    the cost of math.hypot in these loops."""
+    return math.sqrt(x * x + y * y)
+
+
 @_jit
-def classify(tau, g, region):
-    """region from the traction alone: 0 where g = 0, 2 where |tau| is on the bound, else 1."""
+def classify(tau, g, region, nrm):
+    """region from the traction alone: 0 where g = 0, 2 where |tau| is on the bound, else 1.
+
+    Writes the unit direction n = tau/|tau| of the slip elements into nrm. Returns (n_stick, n_slip).
+    """
     ny, nx = g.shape
     n_stick = 0
     n_slip = 0
@@ -31,9 +43,11 @@ def classify(tau, g, region):
             if gi <= 0.0:
                 region[j, i] = 0
                 continue
-            m = math.hypot(tau[0, j, i], tau[1, j, i])
+            m = _mag(tau[0, j, i], tau[1, j, i])
             if m >= (1.0 - ON_BOUND) * gi:
                 region[j, i] = 2
+                nrm[0, j, i] = tau[0, j, i] / m
+                nrm[1, j, i] = tau[1, j, i] / m
                 n_slip += 1
             else:
                 region[j, i] = 1
@@ -52,7 +66,7 @@ def project_discs(tau, g):
                 tau[0, j, i] = 0.0
                 tau[1, j, i] = 0.0
                 continue
-            m = math.hypot(tau[0, j, i], tau[1, j, i])
+            m = _mag(tau[0, j, i], tau[1, j, i])
             if m > gi:
                 f = gi / m
                 tau[0, j, i] *= f
@@ -83,7 +97,7 @@ def force_projection_eval(y, g, lx, ly, tau_out):
                 continue
             zx = y[0, j, i] + lx
             zy = y[1, j, i] + ly
-            m = math.hypot(zx, zy)
+            m = _mag(zx, zy)
             if m <= gi:
                 tau_out[0, j, i] = zx
                 tau_out[1, j, i] = zy
@@ -108,14 +122,14 @@ def force_projection_eval(y, g, lx, ly, tau_out):
 
 
 @_jit
-def gram_and_fit(tau, g, region, w):
+def gram_and_fit(nrm, region, w):
     """Least-squares shift fit: returns (Gxx, Gxy, Gyy, bx, by).
 
     G = sum_stick I + sum_slip t t^T is the Gram matrix of the force-constraint vectors restricted to
     the free directions; b = sum_stick w + sum_slip t (t.w). dU = G^-1 b makes the stick slip and the
     tangential slip component orthogonal to the constraint (the multiplier of sum tau = F/dA).
     """
-    ny, nx = g.shape
+    ny, nx = region.shape
     gxx = 0.0
     gxy = 0.0
     gyy = 0.0
@@ -130,9 +144,8 @@ def gram_and_fit(tau, g, region, w):
                 bx += w[0, j, i]
                 by += w[1, j, i]
             elif r == 2:
-                m = math.hypot(tau[0, j, i], tau[1, j, i])
-                tx = -tau[1, j, i] / m
-                ty = tau[0, j, i] / m
+                tx = -nrm[1, j, i]
+                ty = nrm[0, j, i]
                 gxx += tx * tx
                 gxy += tx * ty
                 gyy += ty * ty
@@ -143,15 +156,14 @@ def gram_and_fit(tau, g, region, w):
 
 
 @_jit
-def release(tau, g, region, w, dux, duy, tol_abs):
+def release(nrm, region, w, dux, duy, tol_abs):
     """Slip elements whose slip points along the traction (s.n > tol_abs) return to stick."""
-    ny, nx = g.shape
+    ny, nx = region.shape
     n = 0
     for j in range(ny):
         for i in range(nx):
             if region[j, i] == 2:
-                m = math.hypot(tau[0, j, i], tau[1, j, i])
-                sn = ((w[0, j, i] - dux) * tau[0, j, i] + (w[1, j, i] - duy) * tau[1, j, i]) / m
+                sn = (w[0, j, i] - dux) * nrm[0, j, i] + (w[1, j, i] - duy) * nrm[1, j, i]
                 if sn > tol_abs:
                     region[j, i] = 1
                     n += 1
@@ -159,7 +171,7 @@ def release(tau, g, region, w, dux, duy, tol_abs):
 
 
 @_jit
-def residual(tau, g, region, w, dux, duy, res, kappa, slip):
+def residual(nrm, g, region, w, dux, duy, res, kappa, slip):
     """Projected residual res = -P s (stick: -s; slip: -t (t.s)), curvature kappa = -s.n/g in slip.
 
     Also writes the slip of the step (s in slip elements, 0 in stick and exterior). Returns
@@ -187,11 +199,10 @@ def residual(tau, g, region, w, dux, duy, res, kappa, slip):
                 kappa[j, i] = 0.0
                 slip[0, j, i] = 0.0
                 slip[1, j, i] = 0.0
-                a = math.hypot(sx, sy)
+                a = _mag(sx, sy)
             else:
-                m = math.hypot(tau[0, j, i], tau[1, j, i])
-                nxv = tau[0, j, i] / m
-                nyv = tau[1, j, i] / m
+                nxv = nrm[0, j, i]
+                nyv = nrm[1, j, i]
                 ts = -nyv * sx + nxv * sy
                 sn = nxv * sx + nyv * sy
                 res[0, j, i] = nyv * ts
@@ -208,9 +219,19 @@ def residual(tau, g, region, w, dux, duy, res, kappa, slip):
     return rmax, snmax, rr
 
 
+@nb.njit(cache=True, inline="always")
+def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
+    """Q (x, y) in a slip element: sqrt(a_tt/(a_tt + kappa)) t (t.(x, y)); returns the two components."""
+    tx = -nrm[1, j, i]
+    ty = nrm[0, j, i]
+    att = axx * tx * tx + ayy * ty * ty
+    ft = math.sqrt(att / (att + kappa[j, i])) * (tx * x + ty * y)
+    return tx * ft, ty * ft
+
+
 @_jit
-def scale_slip(tau, region, kappa, axx, ayy, field):
-    """field <- Q field with Q = 1 in stick and sqrt(a_tt/(a_tt + kappa)) t t^T in slip; 0 outside.
+def scale_into(nrm, region, kappa, axx, ayy, src, dst):
+    """dst <- Q src with Q = 1 in stick and sqrt(a_tt/(a_tt + kappa)) t t^T in slip; 0 outside.
 
     Used on both sides of the circulant inverse: z = Q P M P Q r is a symmetric positive
     semi-definite preconditioner of the linearised operator P (A + kappa) P.
@@ -220,96 +241,100 @@ def scale_slip(tau, region, kappa, axx, ayy, field):
         for i in range(nx):
             r = region[j, i]
             if r == 0:
-                field[0, j, i] = 0.0
-                field[1, j, i] = 0.0
-            elif r == 2:
-                m = math.hypot(tau[0, j, i], tau[1, j, i])
-                tx = -tau[1, j, i] / m
-                ty = tau[0, j, i] / m
-                att = axx * tx * tx + ayy * ty * ty
-                q = math.sqrt(att / (att + kappa[j, i]))
-                ft = q * (tx * field[0, j, i] + ty * field[1, j, i])
-                field[0, j, i] = tx * ft
-                field[1, j, i] = ty * ft
+                dst[0, j, i] = 0.0
+                dst[1, j, i] = 0.0
+            elif r == 1:
+                dst[0, j, i] = src[0, j, i]
+                dst[1, j, i] = src[1, j, i]
+            else:
+                dst[0, j, i], dst[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, src[0, j, i], src[1, j, i])
 
 
 @_jit
-def deflate(tau, region, field, gxx, gxy, gyy):
-    """field <- field - C G^-1 C^T field: remove the part that changes the total force (in place).
+def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy):
+    """z <- D Q z (Q as in `scale_into`; D removes the part that changes the total force); returns res.z.
 
-    C = [P e_x, P e_y] (the force-constraint vectors restricted to the free directions), G = C^T C.
-    `field` must already lie in the free directions (zero outside, tangential in slip).
+    D z = z - C G^-1 C^T z with C = [P e_x, P e_y] (the force-constraint vectors restricted to the free
+    directions) and G = C^T C (from `gram_and_fit`); applied only if deflate (prescribed force).
+    Two passes: Q with the sums C^T z, then D with the product res.z.
     """
     ny, nx = region.shape
     cx = 0.0
     cy = 0.0
     for j in range(ny):
         for i in range(nx):
-            if region[j, i] != 0:
-                cx += field[0, j, i]
-                cy += field[1, j, i]
+            r = region[j, i]
+            if r == 0:
+                z[0, j, i] = 0.0
+                z[1, j, i] = 0.0
+                continue
+            if r == 2:
+                z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i])
+            cx += z[0, j, i]
+            cy += z[1, j, i]
     det = gxx * gyy - gxy * gxy
-    if det <= 1e-300:
-        return
-    lx = (gyy * cx - gxy * cy) / det
-    ly = (-gxy * cx + gxx * cy) / det
+    lx = ly = 0.0
+    if deflate and det > 1e-300:
+        lx = (gyy * cx - gxy * cy) / det
+        ly = (-gxy * cx + gxx * cy) / det
+    rz = 0.0
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
+            if r == 0:
+                continue
             if r == 1:
-                field[0, j, i] -= lx
-                field[1, j, i] -= ly
-            elif r == 2:
-                m = math.hypot(tau[0, j, i], tau[1, j, i])
-                tx = -tau[1, j, i] / m
-                ty = tau[0, j, i] / m
+                z[0, j, i] -= lx
+                z[1, j, i] -= ly
+            else:
+                tx = -nrm[1, j, i]
+                ty = nrm[0, j, i]
                 lt = tx * lx + ty * ly
-                field[0, j, i] -= tx * lt
-                field[1, j, i] -= ty * lt
+                z[0, j, i] -= tx * lt
+                z[1, j, i] -= ty * lt
+            rz += res[0, j, i] * z[0, j, i] + res[1, j, i] * z[1, j, i]
+    return rz
 
 
 @_jit
-def direction(z, v, q_prev, gamma_num_only, gamma):
-    """v <- z + gamma v (in place); if gamma_num_only, return z.q_prev (for the HS coefficient)."""
+def conjugate(z, v, q_prev, vq_prev):
+    """v <- z + gamma v with gamma = -(z.q_prev)/vq_prev (Hestenes-Stiefel for the curvature-weighted
+    product); returns gamma."""
+    gamma = -dot(z, q_prev) / vq_prev
     ny = z.shape[1]
     nx = z.shape[2]
-    if gamma_num_only:
-        s = 0.0
-        for c in range(2):
-            for j in range(ny):
-                for i in range(nx):
-                    s += z[c, j, i] * q_prev[c, j, i]
-        return s
     for c in range(2):
         for j in range(ny):
             for i in range(nx):
                 v[c, j, i] = z[c, j, i] + gamma * v[c, j, i]
-    return 0.0
+    return gamma
 
 
 @_jit
-def curvature_product(tau, region, kappa, v, av, q):
-    """q = P (A v) + kappa v (linearised slip-area operator applied to v); returns (v.q, r-free)."""
+def curvature_product(nrm, region, kappa, v, av, q, res):
+    """q = P (A v) + kappa v (linearised slip-area operator applied to v); returns (v.q, res.v)."""
     ny, nx = region.shape
     vq = 0.0
+    rv = 0.0
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
             if r == 0:
                 q[0, j, i] = 0.0
                 q[1, j, i] = 0.0
-            elif r == 1:
+                continue
+            if r == 1:
                 q[0, j, i] = av[0, j, i]
                 q[1, j, i] = av[1, j, i]
             else:
-                m = math.hypot(tau[0, j, i], tau[1, j, i])
-                tx = -tau[1, j, i] / m
-                ty = tau[0, j, i] / m
+                tx = -nrm[1, j, i]
+                ty = nrm[0, j, i]
                 qt = tx * av[0, j, i] + ty * av[1, j, i] + kappa[j, i] * (tx * v[0, j, i] + ty * v[1, j, i])
                 q[0, j, i] = tx * qt
                 q[1, j, i] = ty * qt
             vq += v[0, j, i] * q[0, j, i] + v[1, j, i] * q[1, j, i]
-    return vq
+            rv += res[0, j, i] * v[0, j, i] + res[1, j, i] * v[1, j, i]
+    return vq, rv
 
 
 @_jit
@@ -351,7 +376,7 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
                 # trust region on the rotation of a slip traction: the linearisation about the current
                 # direction is only valid for small angles (a large tangent step would also be
                 # shortened arbitrarily by the renormalisation); counted as a projection event
-                am = math.hypot(ax, ay)
+                am = _mag(ax, ay)
                 if am > max_turn * gi:
                     f = max_turn * gi / am
                     u[0, j, i] += axx * (ax * f - ax)
@@ -363,7 +388,7 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
                     n_clip += 1
             tx = tau[0, j, i] + ax
             ty = tau[1, j, i] + ay
-            m = math.hypot(tx, ty)
+            m = _mag(tx, ty)
             if r == 2 or m > gi:
                 if r == 1:
                     n_clip += 1
@@ -377,7 +402,7 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
                 u[1, j, i] += ayy * dy
                 dsx += dx
                 dsy += dy
-                d = math.hypot(dx, dy)
+                d = _mag(dx, dy)
                 if d > dmax:
                     dmax = d
             tau[0, j, i] = tx
@@ -386,48 +411,48 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
 
 
 @_jit
-def shift_stick(tau, region, g, lx, ly, u, axx, ayy):
-    """Add (lx, ly) MPa to every stick element (restores the total force after a projection step).
+def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs):
+    """Put the total force back on (fx, fy) (MPa x elements) by uniform shifts of the stick tractions.
 
-    Returns the number of stick elements that this pushes out of their disc (they are projected and
-    become slip; the caller repeats the restoration for the small remainder).
+    Used after a renormalisation/projection step. Stick elements pushed out of their disc are projected
+    and become slip, and the shift is repeated for the remainder (at most 20 times); the displacement
+    of the shift is added with the self coefficients. Returns 0 when |sum tau - f| <= tol_abs, 1 when
+    no stick element is left or the remainder persists (the caller then projects onto the force).
     """
     ny, nx = region.shape
-    n_out = 0
-    for j in range(ny):
-        for i in range(nx):
-            if region[j, i] == 1:
-                tx = tau[0, j, i] + lx
-                ty = tau[1, j, i] + ly
-                m = math.hypot(tx, ty)
-                if m > g[j, i]:
-                    f = g[j, i] / m
-                    tx *= f
-                    ty *= f
-                    region[j, i] = 2
-                    n_out += 1
-                u[0, j, i] += axx * (tx - tau[0, j, i])
-                u[1, j, i] += ayy * (ty - tau[1, j, i])
-                tau[0, j, i] = tx
-                tau[1, j, i] = ty
-    return n_out
-
-
-@_jit
-def masked_sum(tau, region):
-    sx = 0.0
-    sy = 0.0
-    for j in range(region.shape[0]):
-        for i in range(region.shape[1]):
-            if region[j, i] != 0:
-                sx += tau[0, j, i]
-                sy += tau[1, j, i]
-    return sx, sy
-
-
-def warm_up():
-    """Compile (or load from numba's on-disk cache) every kernel on a tiny problem."""
-    tau = np.zeros((2, 2, 2))
-    g = np.ones((2, 2))
-    region = np.zeros((2, 2), np.int8)
-    classify(tau, g, region)
+    for _ in range(20):
+        sx = 0.0
+        sy = 0.0
+        n_stick = 0
+        for j in range(ny):
+            for i in range(nx):
+                r = region[j, i]
+                if r != 0:
+                    sx += tau[0, j, i]
+                    sy += tau[1, j, i]
+                    if r == 1:
+                        n_stick += 1
+        dx = fx - sx
+        dy = fy - sy
+        if _mag(dx, dy) <= tol_abs:
+            return 0
+        if n_stick == 0:
+            return 1
+        lx = dx / n_stick
+        ly = dy / n_stick
+        for j in range(ny):
+            for i in range(nx):
+                if region[j, i] == 1:
+                    tx = tau[0, j, i] + lx
+                    ty = tau[1, j, i] + ly
+                    m = _mag(tx, ty)
+                    if m > g[j, i]:
+                        f = g[j, i] / m
+                        tx *= f
+                        ty *= f
+                        region[j, i] = 2
+                    u[0, j, i] += axx * (tx - tau[0, j, i])
+                    u[1, j, i] += ayy * (ty - tau[1, j, i])
+                    tau[0, j, i] = tx
+                    tau[1, j, i] = ty
+    return 1

@@ -105,8 +105,12 @@ class NormalResult:
 # --- numba kernels (flat, contiguous float64 arrays; one pass each) ----------------------------------
 
 @numba.njit(cache=True)
-def _project_preconditioned(z, r, r_prev, active, deflate):
-    """z <- P_C z (zero off C; zero mean over C if deflate). Returns (r.z, r_prev.z)."""
+def _direction(z, r, r_prev, v, rz_old, active, deflate):
+    """The projected preconditioned residual and the new search direction, in place. Returns r.z.
+
+    z <- P_C z (zero off C; zero mean over C if deflate), then v <- P_C (z + beta v) with the
+    Polak-Ribiere beta = max(0, (r.z - r_prev.z) / rz_old) (beta = 0, steepest descent, if rz_old = 0).
+    """
     n = z.size
     shift = 0.0
     if deflate:
@@ -128,13 +132,7 @@ def _project_preconditioned(z, r, r_prev, active, deflate):
             rpz += r_prev[i] * zi
         else:
             z[i] = 0.0
-    return rz, rpz
-
-
-@numba.njit(cache=True)
-def _new_direction(v, z, beta, active, deflate):
-    """v <- P_C (z + beta v): zero off C, zero mean over C if deflate."""
-    n = v.size
+    beta = max(0.0, (rz - rpz) / rz_old) if rz_old > 0.0 else 0.0
     s = 0.0
     count = 0
     for i in range(n):
@@ -150,27 +148,24 @@ def _new_direction(v, z, beta, active, deflate):
         for i in range(n):
             if active[i]:
                 v[i] -= shift
+    return rz
 
 
 @numba.njit(cache=True)
-def _dot_pair(r, v, q):
-    """(r.v, v.q)."""
-    rv = 0.0
-    vq = 0.0
-    for i in range(v.size):
-        rv += r[i] * v[i]
-        vq += v[i] * q[i]
-    return rv, vq
-
-
-@numba.njit(cache=True)
-def _step(p, u, v, q, alpha, active, trunc_index, trunc_value):
-    """p <- max(0, p + alpha v) on C, u <- u + alpha q everywhere.
+def _step(p, u, v, q, r, active, trunc_index, trunc_value):
+    """Step alpha = (r.v)/(v.q) along v (alpha = 0 if v.q <= 0, i.e. v = 0: the residual vanishes on C):
+    p <- max(0, p + alpha v) on C, u <- u + alpha q everywhere.
 
     Elements whose pressure would turn negative leave C; their index and the missing pressure
     (-(p + alpha v) > 0, to be added back to u through A) are stored in trunc_index/trunc_value up to
     their capacity. Returns (number truncated, sum p, sum (p_new - p_old)^2, sum p_new^2).
     """
+    rv = 0.0
+    vq = 0.0
+    for i in range(v.size):
+        rv += r[i] * v[i]
+        vq += v[i] * q[i]
+    alpha = rv / vq if vq > 0.0 else 0.0
     ntrunc = 0
     cap = trunc_index.size
     psum = 0.0
@@ -424,18 +419,9 @@ def solve_normal(op, profile, *, force=None, approach=None, initial=None, extra_
         iterations += 1
         # preconditioned, projected residual and the Polak-Ribiere direction
         op.normal_inverse(r, out=z)
-        rz, rpz = _project_preconditioned(flat["z"], flat["r"], flat["r_prev"], flat["active"], deflate)
-        beta = max(0.0, (rz - rpz) / rz_old) if rz_old > 0.0 else 0.0
-        _new_direction(flat["v"], flat["z"], beta, flat["active"], deflate)
-        rz_old = rz
+        rz_old = _direction(flat["z"], flat["r"], flat["r_prev"], flat["v"], rz_old, flat["active"], deflate)
         op.normal(v, out=q)
-        rv, vq = _dot_pair(flat["r"], flat["v"], flat["q"])
-        if not (vq > 0.0):
-            # v = 0: the residual vanishes on C (exact solution, or a single element in force mode)
-            alpha = 0.0
-        else:
-            alpha = rv / vq
-        ntrunc, psum, dp2, p2 = _step(flat["p"], flat["u"], flat["v"], flat["q"], alpha, flat["active"],
+        ntrunc, psum, dp2, p2 = _step(flat["p"], flat["u"], flat["v"], flat["q"], flat["r"], flat["active"],
                                       trunc_index, trunc_value)
         if ntrunc:
             if ntrunc <= max_columns:

@@ -199,6 +199,7 @@ class _Workspace:
         f2 = lambda: np.zeros((2, ny, nx))
         self.tau, self.u, self.u_prev, self.w = f2(), f2(), f2(), f2()
         self.res, self.z, self.v, self.av, self.q, self.slip = f2(), f2(), f2(), f2(), f2(), f2()
+        self.nrm = f2()  # unit direction of the slip tractions (written by K.classify)
         self.kappa = np.zeros((ny, nx))
         self.region = np.zeros((ny, nx), np.int8)
 
@@ -235,7 +236,8 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     g = np.ascontiguousarray(bound, dtype=float)
     if g.shape != shape:
         raise InputError(f"bound has shape {g.shape}, the grid is {shape}")
-    if not np.all(np.isfinite(g)) or np.any(g < 0):
+    gmin, gmax = (float(g.min()), float(g.max())) if g.size else (0.0, 0.0)
+    if not (gmin >= 0.0 and math.isfinite(gmax)):  # NaN fails both comparisons
         raise InputError("bound g = mu p must be finite and >= 0 (MPa)")
     tau_p = np.asarray(previous_traction, dtype=float)
     if tau_p.shape != (2,) + shape:
@@ -259,11 +261,10 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             raise InputError(f"shift = {dU!r} mm must be finite")
 
     ws = _Workspace(shape)
-    tau, u, u_prev, w, res, z, v, av, q, slip, kappa, region = (
-        ws.tau, ws.u, ws.u_prev, ws.w, ws.res, ws.z, ws.v, ws.av, ws.q, ws.slip, ws.kappa, ws.region)
+    tau, u, u_prev, w, res, z, v, av, q, slip, kappa, region, nrm = (
+        ws.tau, ws.u, ws.u_prev, ws.w, ws.res, ws.z, ws.v, ws.av, ws.q, ws.slip, ws.kappa, ws.region, ws.nrm)
     axx, ayy = op.self_coefficients["xx"], op.self_coefficients["yy"]
     a_self = max(axx, ayy)
-    gmax = float(g.max()) if g.size else 0.0
     products = 0
 
     def matvec(field, out):
@@ -308,6 +309,10 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
 
     tol = params.tol
     scale = a_self * gmax
+    gxx = gxy = gyy = 0.0  # Gram matrix of the force constraint (force mode, from K.gram_and_fit)
+    if force_mode:
+        f_cells = F / dA  # prescribed sum of tau over the elements (MPa)
+        restore_tol = 1e-15 * float(np.sum(g))
     restart = True
     synced = True
     vq_prev = 1.0
@@ -324,10 +329,10 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         np.subtract(u, u_prev, out=w)
         if e is not None:
             w += e
-        n_stick, n_slip = K.classify(tau, g, region)
+        n_stick, n_slip = K.classify(tau, g, region, nrm)
         for _ in range(3):
             if force_mode:
-                gxx, gxy, gyy, bx, by = K.gram_and_fit(tau, g, region, w)
+                gxx, gxy, gyy, bx, by = K.gram_and_fit(nrm, region, w)
                 det = gxx * gyy - gxy * gxy
                 if det > 1e-12 * (gxx + gyy) ** 2:
                     dU[0] = (gyy * bx - gxy * by) / det
@@ -335,13 +340,13 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
                     tr = gxx + gyy
                     dU[0], dU[1] = bx / tr, by / tr
-            rmax, snmax, rr = K.residual(tau, g, region, w, dU[0], dU[1], res, kappa, slip)
+            rmax, snmax, rr = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip)
             # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
             # back inside) only once the current face is solved better than that violation: releasing
             # on a poor multiplier estimate makes the division cycle near the traction bound.
             if snmax <= tol * scale or rmax > release_ratio * snmax:
                 break
-            released += K.release(tau, g, region, w, dU[0], dU[1], 0.0)
+            released += K.release(nrm, region, w, dU[0], dU[1], 0.0)
             restart = True
         residual_rel = max(rmax, snmax) / scale
         if not math.isfinite(residual_rel):
@@ -389,27 +394,20 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 regime=_regime(force, capacity, region))
 
         # preconditioned, deflated residual: z = Pi Q P M P Q r
-        z[...] = res
-        K.scale_slip(tau, region, kappa, axx, ayy, z)
+        K.scale_into(nrm, region, kappa, axx, ayy, res, z)
         op.tangential_inverse(z[0], z[1], out=z)
-        K.scale_slip(tau, region, kappa, axx, ayy, z)
-        if force_mode:
-            K.deflate(tau, region, z, gxx, gxy, gyy)
-        rz = K.dot(res, z)
+        rz = K.finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, force_mode, gxx, gxy, gyy)
         if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
             z[...] = res
-            if force_mode:
-                K.deflate(tau, region, z, gxx, gxy, gyy)
-            rz = K.dot(res, z)
+            rz = K.finish_preconditioner(nrm, region, np.zeros_like(kappa), axx, ayy, z, res, force_mode,
+                                         gxx, gxy, gyy)
             restart = True
         if restart:
             v[...] = z
         else:
-            gamma = -K.direction(z, v, q, True, 0.0) / vq_prev
-            K.direction(z, v, q, False, gamma)
+            K.conjugate(z, v, q, vq_prev)
         matvec(v, av)
-        vq = K.curvature_product(tau, region, kappa, v, av, q)
-        rv = K.dot(res, v)
+        vq, rv = K.curvature_product(nrm, region, kappa, v, av, q, res)
         if vq <= 0.0 or rv <= 0.0:
             if restart:
                 raise ConvergenceError("tangential solver: search direction is not a descent direction",
@@ -423,7 +421,8 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         vq_prev = vq
         synced = synced and dmax == 0.0
         if force_mode and (dsx != 0.0 or dsy != 0.0):
-            _restore_force(tau, region, g, F / dA, u, axx, ayy)
+            if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol):
+                _project_on_force(tau.copy(), g, f_cells, tau)
         if n_clip > 0 or (exact and dmax > 0.0):
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             synced = True
@@ -450,21 +449,6 @@ def _stick_point_shift(w, g, region, dU, slip):
     inside = region == 2
     slip[0] = np.where(inside, w[0] - dU[0], 0.0)
     slip[1] = np.where(inside, w[1] - dU[1], 0.0)
-
-
-def _restore_force(tau, region, g, f, u, axx, ayy):
-    """Put the total force back on f = F/dA after renormalisation/projection (stick shift)."""
-    for _ in range(20):
-        sx, sy = K.masked_sum(tau, region)
-        dx, dy = f[0] - sx, f[1] - sy
-        if math.hypot(dx, dy) <= 1e-15 * float(np.sum(g)):
-            return
-        n_stick = int(np.count_nonzero(region == 1))
-        if n_stick == 0:
-            _project_on_force(tau.copy(), g, f, tau)
-            return
-        K.shift_stick(tau, region, g, dx / n_stick, dy / n_stick, u, axx, ayy)
-    _project_on_force(tau.copy(), g, f, tau)
 
 
 def _regime(force, capacity, region):
