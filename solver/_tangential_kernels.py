@@ -29,16 +29,31 @@ def _mag(x, y):
 
 
 @_jit
-def classify(tau, g, region, nrm):
-    """region from the traction alone: 0 where g = 0, 2 where |tau| is on the bound, else 1.
+def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
+    """Division and shift fit of the current iterate, in one pass.
 
-    Writes the unit direction n = tau/|tau| of the slip elements into nrm. Returns (n_stick, n_slip).
+    region from the traction alone (0 where g = 0, 2 where |tau| is on the bound, else 1); the unit
+    direction n = tau/|tau| of the slip elements into nrm; the displacement change of the step
+    w = u - u_prev (+ extra if has_extra) everywhere. Returns (n_stick, n_slip) and the sums of
+    `gram_and_fit` for this division: (n_stick, n_slip, Gxx, Gxy, Gyy, bx, by).
     """
     ny, nx = g.shape
     n_stick = 0
     n_slip = 0
+    gxx = 0.0
+    gxy = 0.0
+    gyy = 0.0
+    bx = 0.0
+    by = 0.0
     for j in range(ny):
         for i in range(nx):
+            wx = u[0, j, i] - u_prev[0, j, i]
+            wy = u[1, j, i] - u_prev[1, j, i]
+            if has_extra:
+                wx += extra[0, j, i]
+                wy += extra[1, j, i]
+            w[0, j, i] = wx
+            w[1, j, i] = wy
             gi = g[j, i]
             if gi <= 0.0:
                 region[j, i] = 0
@@ -46,13 +61,27 @@ def classify(tau, g, region, nrm):
             m = _mag(tau[0, j, i], tau[1, j, i])
             if m >= (1.0 - ON_BOUND) * gi:
                 region[j, i] = 2
-                nrm[0, j, i] = tau[0, j, i] / m
-                nrm[1, j, i] = tau[1, j, i] / m
+                nxv = tau[0, j, i] / m
+                nyv = tau[1, j, i] / m
+                nrm[0, j, i] = nxv
+                nrm[1, j, i] = nyv
                 n_slip += 1
+                tx = -nyv
+                ty = nxv
+                gxx += tx * tx
+                gxy += tx * ty
+                gyy += ty * ty
+                ws = tx * wx + ty * wy
+                bx += tx * ws
+                by += ty * ws
             else:
                 region[j, i] = 1
                 n_stick += 1
-    return n_stick, n_slip
+                gxx += 1.0
+                gyy += 1.0
+                bx += wx
+                by += wy
+    return n_stick, n_slip, gxx, gxy, gyy, bx, by
 
 
 @_jit
@@ -128,6 +157,7 @@ def gram_and_fit(nrm, region, w):
     G = sum_stick I + sum_slip t t^T is the Gram matrix of the force-constraint vectors restricted to
     the free directions; b = sum_stick w + sum_slip t (t.w). dU = G^-1 b makes the stick slip and the
     tangential slip component orthogonal to the constraint (the multiplier of sum tau = F/dA).
+    `classify` returns the same sums; this kernel recomputes them after a release changed the division.
     """
     ny, nx = region.shape
     gxx = 0.0
@@ -171,11 +201,12 @@ def release(nrm, region, w, dux, duy, tol_abs):
 
 
 @_jit
-def residual(nrm, g, region, w, dux, duy, res, kappa, slip):
+def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
     """Projected residual res = -P s (stick: -s; slip: -t (t.s)), curvature kappa = -s.n/g in slip.
 
-    Also writes the slip of the step (s in slip elements, 0 in stick and exterior). Returns
-    (max |res_I| over stick and slip, max positive s.n over slip, res.res).
+    Also writes the slip of the step (s in slip elements, 0 in stick and exterior) and z = Q res, the
+    first factor of the preconditioner (see `_q_slip`). Returns (max |res_I| over stick and slip,
+    max positive s.n over slip, res.res).
     """
     ny, nx = g.shape
     rmax = 0.0
@@ -187,6 +218,8 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip):
             if r == 0:
                 res[0, j, i] = 0.0
                 res[1, j, i] = 0.0
+                z[0, j, i] = 0.0
+                z[1, j, i] = 0.0
                 kappa[j, i] = 0.0
                 slip[0, j, i] = 0.0
                 slip[1, j, i] = 0.0
@@ -196,6 +229,8 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip):
             if r == 1:
                 res[0, j, i] = -sx
                 res[1, j, i] = -sy
+                z[0, j, i] = -sx
+                z[1, j, i] = -sy
                 kappa[j, i] = 0.0
                 slip[0, j, i] = 0.0
                 slip[1, j, i] = 0.0
@@ -208,6 +243,7 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip):
                 res[0, j, i] = nyv * ts
                 res[1, j, i] = -nxv * ts
                 kappa[j, i] = max(-sn, 0.0) / g[j, i]
+                z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, res[0, j, i], res[1, j, i])
                 slip[0, j, i] = sx
                 slip[1, j, i] = sy
                 a = abs(ts)
@@ -221,7 +257,12 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip):
 
 @nb.njit(cache=True, inline="always")
 def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
-    """Q (x, y) in a slip element: sqrt(a_tt/(a_tt + kappa)) t (t.(x, y)); returns the two components."""
+    """Q (x, y) in a slip element: sqrt(a_tt/(a_tt + kappa)) t (t.(x, y)); returns the two components.
+
+    Q = 1 in stick, sqrt(a_tt/(a_tt + kappa)) t t^T in slip and 0 outside; applied on both sides of the
+    circulant inverse M, z = Q P M P Q r is a symmetric positive semi-definite preconditioner of the
+    linearised operator P (A + kappa) P (a_tt = t^T diag(a_xx, a_yy) t, the self coefficient along t).
+    """
     tx = -nrm[1, j, i]
     ty = nrm[0, j, i]
     att = axx * tx * tx + ayy * ty * ty
@@ -230,29 +271,11 @@ def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
 
 
 @_jit
-def scale_into(nrm, region, kappa, axx, ayy, src, dst):
-    """dst <- Q src with Q = 1 in stick and sqrt(a_tt/(a_tt + kappa)) t t^T in slip; 0 outside.
+def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy, q_prev):
+    """z <- D Q z (Q as in `_q_slip`; D removes the part that changes the total force).
 
-    Used on both sides of the circulant inverse: z = Q P M P Q r is a symmetric positive
-    semi-definite preconditioner of the linearised operator P (A + kappa) P.
-    """
-    ny, nx = region.shape
-    for j in range(ny):
-        for i in range(nx):
-            r = region[j, i]
-            if r == 0:
-                dst[0, j, i] = 0.0
-                dst[1, j, i] = 0.0
-            elif r == 1:
-                dst[0, j, i] = src[0, j, i]
-                dst[1, j, i] = src[1, j, i]
-            else:
-                dst[0, j, i], dst[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, src[0, j, i], src[1, j, i])
-
-
-@_jit
-def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy):
-    """z <- D Q z (Q as in `scale_into`; D removes the part that changes the total force); returns res.z.
+    Returns (res.z, z.q_prev): the preconditioned residual norm and the numerator of the conjugation
+    coefficient (see `conjugate`).
 
     D z = z - C G^-1 C^T z with C = [P e_x, P e_y] (the force-constraint vectors restricted to the free
     directions) and G = C^T C (from `gram_and_fit`); applied only if deflate (prescribed force).
@@ -278,6 +301,7 @@ def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gx
         lx = (gyy * cx - gxy * cy) / det
         ly = (-gxy * cx + gxx * cy) / det
     rz = 0.0
+    zq = 0.0
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
@@ -293,21 +317,19 @@ def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gx
                 z[0, j, i] -= tx * lt
                 z[1, j, i] -= ty * lt
             rz += res[0, j, i] * z[0, j, i] + res[1, j, i] * z[1, j, i]
-    return rz
+            zq += z[0, j, i] * q_prev[0, j, i] + z[1, j, i] * q_prev[1, j, i]
+    return rz, zq
 
 
 @_jit
-def conjugate(z, v, q_prev, vq_prev):
-    """v <- z + gamma v with gamma = -(z.q_prev)/vq_prev (Hestenes-Stiefel for the curvature-weighted
-    product); returns gamma."""
-    gamma = -dot(z, q_prev) / vq_prev
+def conjugate(z, v, gamma):
+    """v <- z + gamma v (in place)."""
     ny = z.shape[1]
     nx = z.shape[2]
     for c in range(2):
         for j in range(ny):
             for i in range(nx):
                 v[c, j, i] = z[c, j, i] + gamma * v[c, j, i]
-    return gamma
 
 
 @_jit
@@ -355,13 +377,17 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
     stick elements that leave their disc are projected radially onto it and become slip. The
     displacement of these small local corrections is added with the self coefficients only (the
     caller re-synchronises u = A tau exactly before accepting convergence). Returns
-    (number of stick elements clipped, max |correction| in MPa, sum of corrections x, y).
+    (number of stick elements clipped, max |correction| in MPa, sum of corrections x, y, and for
+    `restore_force`: sum tau x, y and the number of stick elements after the step).
     """
     ny, nx = g.shape
     n_clip = 0
     dmax = 0.0
     dsx = 0.0
     dsy = 0.0
+    fx = 0.0
+    fy = 0.0
+    n_stick = 0
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
@@ -405,33 +431,27 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
                 d = _mag(dx, dy)
                 if d > dmax:
                     dmax = d
+            else:
+                n_stick += 1
             tau[0, j, i] = tx
             tau[1, j, i] = ty
-    return n_clip, dmax, dsx, dsy
+            fx += tx
+            fy += ty
+    return n_clip, dmax, dsx, dsy, fx, fy, n_stick
 
 
 @_jit
-def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs):
+def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs, sx, sy, n_stick):
     """Put the total force back on (fx, fy) (MPa x elements) by uniform shifts of the stick tractions.
 
-    Used after a renormalisation/projection step. Stick elements pushed out of their disc are projected
-    and become slip, and the shift is repeated for the remainder (at most 20 times); the displacement
-    of the shift is added with the self coefficients. Returns 0 when |sum tau - f| <= tol_abs, 1 when
-    no stick element is left or the remainder persists (the caller then projects onto the force).
+    Used after a renormalisation/projection step; (sx, sy) = sum tau and n_stick are the current ones
+    (returned by `step`). Stick elements pushed out of their disc are projected and become slip, and
+    the shift is repeated for the remainder (at most 20 times); the displacement of the shift is added
+    with the self coefficients. Returns 0 when |sum tau - f| <= tol_abs, 1 when no stick element is
+    left or the remainder persists (the caller then projects onto the force).
     """
     ny, nx = region.shape
     for _ in range(20):
-        sx = 0.0
-        sy = 0.0
-        n_stick = 0
-        for j in range(ny):
-            for i in range(nx):
-                r = region[j, i]
-                if r != 0:
-                    sx += tau[0, j, i]
-                    sy += tau[1, j, i]
-                    if r == 1:
-                        n_stick += 1
         dx = fx - sx
         dy = fy - sy
         if _mag(dx, dy) <= tol_abs:
@@ -440,9 +460,13 @@ def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs):
             return 1
         lx = dx / n_stick
         ly = dy / n_stick
+        sx = 0.0
+        sy = 0.0
+        n_stick = 0
         for j in range(ny):
             for i in range(nx):
-                if region[j, i] == 1:
+                r = region[j, i]
+                if r == 1:
                     tx = tau[0, j, i] + lx
                     ty = tau[1, j, i] + ly
                     m = _mag(tx, ty)
@@ -451,8 +475,15 @@ def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs):
                         tx *= f
                         ty *= f
                         region[j, i] = 2
+                    else:
+                        n_stick += 1
                     u[0, j, i] += axx * (tx - tau[0, j, i])
                     u[1, j, i] += ayy * (ty - tau[1, j, i])
                     tau[0, j, i] = tx
                     tau[1, j, i] = ty
-    return 1
+                if r != 0:
+                    sx += tau[0, j, i]
+                    sy += tau[1, j, i]
+    dx = fx - sx
+    dy = fy - sy
+    return 0 if _mag(dx, dy) <= tol_abs else 1

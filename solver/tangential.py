@@ -306,6 +306,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     else:
         u[...] = 0.0
     e = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
+    e_arr = w if e is None else e  # a placeholder of the right type when there is no extra slip
 
     tol = params.tol
     scale = a_self * gmax
@@ -326,13 +327,10 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     it = 0
     while True:
         # slip of the step for the current traction and division
-        np.subtract(u, u_prev, out=w)
-        if e is not None:
-            w += e
-        n_stick, n_slip = K.classify(tau, g, region, nrm)
-        for _ in range(3):
+        n_stick, n_slip, *gram = K.classify(tau, g, region, nrm, u, u_prev, e_arr, e is not None, w)
+        for release_round in range(3):
             if force_mode:
-                gxx, gxy, gyy, bx, by = K.gram_and_fit(nrm, region, w)
+                gxx, gxy, gyy, bx, by = gram if release_round == 0 else K.gram_and_fit(nrm, region, w)
                 det = gxx * gyy - gxy * gxy
                 if det > 1e-12 * (gxx + gyy) ** 2:
                     dU[0] = (gyy * bx - gxy * by) / det
@@ -340,7 +338,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
                     tr = gxx + gyy
                     dU[0], dU[1] = bx / tr, by / tr
-            rmax, snmax, rr = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip)
+            rmax, snmax, rr = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip, axx, ayy, z)
             # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
             # back inside) only once the current face is solved better than that violation: releasing
             # on a poor multiplier estimate makes the division cycle near the traction bound.
@@ -394,18 +392,18 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 regime=_regime(force, capacity, region))
 
         # preconditioned, deflated residual: z = Pi Q P M P Q r
-        K.scale_into(nrm, region, kappa, axx, ayy, res, z)
+        # z = Q res was written by K.residual
         op.tangential_inverse(z[0], z[1], out=z)
-        rz = K.finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, force_mode, gxx, gxy, gyy)
+        rz, zq = K.finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, force_mode, gxx, gxy, gyy, q)
         if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
             z[...] = res
-            rz = K.finish_preconditioner(nrm, region, np.zeros_like(kappa), axx, ayy, z, res, force_mode,
-                                         gxx, gxy, gyy)
+            rz, zq = K.finish_preconditioner(nrm, region, np.zeros_like(kappa), axx, ayy, z, res, force_mode,
+                                             gxx, gxy, gyy, q)
             restart = True
         if restart:
             v[...] = z
         else:
-            K.conjugate(z, v, q, vq_prev)
+            K.conjugate(z, v, -zq / vq_prev)
         matvec(v, av)
         vq, rv = K.curvature_product(nrm, region, kappa, v, av, q, res)
         if vq <= 0.0 or rv <= 0.0:
@@ -416,12 +414,12 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             restart = True
             continue
         alpha = rv / vq
-        n_clip, dmax, dsx, dsy = K.step(tau, v, alpha, u, av, g, region, axx, ayy, _MAX_TURN)
+        n_clip, dmax, dsx, dsy, fsx, fsy, n_stick = K.step(tau, v, alpha, u, av, g, region, axx, ayy, _MAX_TURN)
         restart = n_clip > 0
         vq_prev = vq
         synced = synced and dmax == 0.0
         if force_mode and (dsx != 0.0 or dsy != 0.0):
-            if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol):
+            if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol, fsx, fsy, n_stick):
                 _project_on_force(tau.copy(), g, f_cells, tau)
         if n_clip > 0 or (exact and dmax > 0.0):
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
