@@ -12,7 +12,6 @@ square root per element and iteration instead of one per kernel); entries outsid
 import math
 
 import numba as nb
-import numpy as np
 
 #: |tau| >= (1 - ON_BOUND) g counts as "on the bound" (slip). Renormalised and clipped elements sit
 #: exactly on the bound, so this only absorbs round-off.
@@ -82,72 +81,6 @@ def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
                 bx += wx
                 by += wy
     return n_stick, n_slip, gxx, gxy, gyy, bx, by
-
-
-@_jit
-def project_discs(tau, g):
-    """tau <- radial projection onto |tau_I| <= g_I; zero where g = 0 (in place)."""
-    ny, nx = g.shape
-    for j in range(ny):
-        for i in range(nx):
-            gi = g[j, i]
-            if gi <= 0.0:
-                tau[0, j, i] = 0.0
-                tau[1, j, i] = 0.0
-                continue
-            m = _mag(tau[0, j, i], tau[1, j, i])
-            if m > gi:
-                f = gi / m
-                tau[0, j, i] *= f
-                tau[1, j, i] *= f
-
-
-@_jit
-def force_projection_eval(y, g, lx, ly, tau_out):
-    """tau_out = proj_discs(y + lambda); returns (sum tau_x, sum tau_y, J_xx, J_xy, J_yy, psi).
-
-    psi = sum_I h(y_I + lambda) with h(z) = |z|^2/2 - dist(z, disc)^2/2 (a convex C^1 function whose
-    gradient is the projection) and J = sum of the projection Jacobians (theory §5: used to put the
-    starting traction on the force constraint, Euclidean projection onto discs & force).
-    """
-    ny, nx = g.shape
-    sx = 0.0
-    sy = 0.0
-    jxx = 0.0
-    jxy = 0.0
-    jyy = 0.0
-    psi = 0.0
-    for j in range(ny):
-        for i in range(nx):
-            gi = g[j, i]
-            if gi <= 0.0:
-                tau_out[0, j, i] = 0.0
-                tau_out[1, j, i] = 0.0
-                continue
-            zx = y[0, j, i] + lx
-            zy = y[1, j, i] + ly
-            m = _mag(zx, zy)
-            if m <= gi:
-                tau_out[0, j, i] = zx
-                tau_out[1, j, i] = zy
-                sx += zx
-                sy += zy
-                jxx += 1.0
-                jyy += 1.0
-                psi += 0.5 * m * m
-            else:
-                nxv = zx / m
-                nyv = zy / m
-                tau_out[0, j, i] = gi * nxv
-                tau_out[1, j, i] = gi * nyv
-                sx += gi * nxv
-                sy += gi * nyv
-                f = gi / m
-                jxx += f * (1.0 - nxv * nxv)
-                jxy += -f * nxv * nyv
-                jyy += f * (1.0 - nyv * nyv)
-                psi += 0.5 * m * m - 0.5 * (m - gi) ** 2
-    return sx, sy, jxx, jxy, jyy, psi
 
 
 @_jit

@@ -295,7 +295,7 @@ def _field(name, value, shape):
     arr = np.asarray(value, dtype=float)
     if arr.shape != shape:
         raise InputError(f"{name}: shape {arr.shape} does not match the grid shape (ny, nx) = {shape}")
-    if not np.all(np.isfinite(arr)):
+    if not math.isfinite(float(arr.sum())) and not np.all(np.isfinite(arr)):  # the sum is the cheap test
         raise InputError(f"{name}: contains {np.count_nonzero(~np.isfinite(arr))} non-finite values "
                          "(NaN or inf); every element must be a finite number")
     return np.ascontiguousarray(arr, dtype=np.float64)

@@ -76,6 +76,7 @@ import weakref
 import numpy as np
 
 from bem.errors import ConvergenceError, GrossSlidingError, InputError
+from . import _force_projection as FP
 from . import _tangential_kernels as K
 
 #: Relative margin below the friction capacity sum g dA: a force within this of the capacity is gross
@@ -147,48 +148,6 @@ class TangentialResult:
 def traction_capacity(bound, grid) -> float:
     """Largest tangential force (N) the contact can carry: sum g dA with g = mu p the bound (MPa)."""
     return float(np.sum(bound)) * grid.cell_area
-
-
-def _project_on_force(y, g, f, tau_out):
-    """tau_out = Euclidean projection of y onto {|tau_I| <= g_I} intersected with {sum tau = f}.
-
-    The projection is proj_discs(y + lambda) with lambda (MPa) the root of the monotone 2-D map
-    S(lambda) = sum proj_discs(y + lambda) = f (the gradient of a convex dual function), found by a damped
-    Newton iteration on |S - f|. f = F/dA in MPa; requires |f| < sum g.
-    """
-    cap = float(np.sum(g))
-    tol = 1e-13 * cap
-    fx, fy = f
-    n_contact = max(int(np.count_nonzero(g > 0)), 1)
-    sy0 = K.force_projection_eval(y, g, 0.0, 0.0, tau_out)
-    lx, ly = (fx - sy0[0]) / n_contact, (fy - sy0[1]) / n_contact  # exact if nothing saturates
-    sx, sy, jxx, jxy, jyy, _ = K.force_projection_eval(y, g, lx, ly, tau_out)
-    err = math.hypot(sx - fx, sy - fy)
-    for _ in range(200):
-        if err <= tol:
-            return
-        rx, ry = sx - fx, sy - fy
-        reg = 1e-12 * (jxx + jyy) + 1e-300
-        a, b, d = jxx + reg, jxy, jyy + reg
-        det = a * d - b * b
-        dx = -(d * rx - b * ry) / det
-        dy = -(-b * rx + a * ry) / det
-        t = 1.0
-        for _ in range(80):
-            nsx, nsy, njxx, njxy, njyy, _ = K.force_projection_eval(y, g, lx + t * dx, ly + t * dy, tau_out)
-            nerr = math.hypot(nsx - fx, nsy - fy)
-            if nerr < (1.0 - 1e-4 * t) * err:
-                break
-            t *= 0.5
-        else:
-            break
-        lx, ly = lx + t * dx, ly + t * dy
-        sx, sy, jxx, jxy, jyy, err = nsx, nsy, njxx, njxy, njyy, nerr
-    sx, sy, *_ = K.force_projection_eval(y, g, lx, ly, tau_out)
-    err = math.hypot(sx - fx, sy - fy)
-    if err > 1e-10 * cap:
-        raise ConvergenceError("could not place the starting traction on the force constraint",
-                               solver="tangential/force-projection", residual=err / cap, tol=1e-10)
 
 
 class _Workspace:
@@ -291,9 +250,9 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     tau[...] = tau_p if initial is None else np.asarray(initial, dtype=float)
     if not np.all(np.isfinite(tau)):
         raise InputError("initial traction must be finite")
-    K.project_discs(tau, g)
+    FP.project_discs(tau, g)
     if force_mode:
-        _project_on_force(tau.copy(), g, F / dA, tau)
+        FP.project_on_force(tau.copy(), g, F / dA, tau)
     if np.array_equal(tau, tau_p):
         u[...] = u_prev
     elif np.any(tau):
@@ -420,7 +379,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         synced = synced and dmax == 0.0
         if force_mode and (dsx != 0.0 or dsy != 0.0):
             if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol, fsx, fsy, n_stick):
-                _project_on_force(tau.copy(), g, f_cells, tau)
+                FP.project_on_force(tau.copy(), g, f_cells, tau)
         if n_clip > 0 or (exact and dmax > 0.0):
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             synced = True

@@ -1,0 +1,120 @@
+"""Euclidean projection of a traction field onto the Coulomb discs and the force constraint (theory.md §5).
+
+Used by the tangential solver (`solver.tangential`) to place the starting traction, and to restore the
+total force when the uniform shift of the stick tractions cannot. Fields are (2, ny, nx) tractions and
+(ny, nx) bounds g = mu p in MPa; f = F/dA is the prescribed sum of the tractions over the elements (MPa).
+"""
+import math
+
+import numpy as np
+
+from bem.errors import ConvergenceError
+from ._tangential_kernels import _jit, _mag
+
+
+@_jit
+def project_discs(tau, g):
+    """tau <- radial projection onto |tau_I| <= g_I; zero where g = 0 (in place)."""
+    ny, nx = g.shape
+    for j in range(ny):
+        for i in range(nx):
+            gi = g[j, i]
+            if gi <= 0.0:
+                tau[0, j, i] = 0.0
+                tau[1, j, i] = 0.0
+                continue
+            m = _mag(tau[0, j, i], tau[1, j, i])
+            if m > gi:
+                f = gi / m
+                tau[0, j, i] *= f
+                tau[1, j, i] *= f
+
+
+@_jit
+def force_projection_eval(y, g, lx, ly, tau_out):
+    """tau_out = proj_discs(y + lambda); returns (sum tau_x, sum tau_y, J_xx, J_xy, J_yy, psi).
+
+    psi = sum_I h(y_I + lambda) with h(z) = |z|^2/2 - dist(z, disc)^2/2 (a convex C^1 function whose
+    gradient is the projection) and J = sum of the projection Jacobians (theory §5: used to put the
+    starting traction on the force constraint, Euclidean projection onto discs & force).
+    """
+    ny, nx = g.shape
+    sx = 0.0
+    sy = 0.0
+    jxx = 0.0
+    jxy = 0.0
+    jyy = 0.0
+    psi = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            gi = g[j, i]
+            if gi <= 0.0:
+                tau_out[0, j, i] = 0.0
+                tau_out[1, j, i] = 0.0
+                continue
+            zx = y[0, j, i] + lx
+            zy = y[1, j, i] + ly
+            m = _mag(zx, zy)
+            if m <= gi:
+                tau_out[0, j, i] = zx
+                tau_out[1, j, i] = zy
+                sx += zx
+                sy += zy
+                jxx += 1.0
+                jyy += 1.0
+                psi += 0.5 * m * m
+            else:
+                nxv = zx / m
+                nyv = zy / m
+                tau_out[0, j, i] = gi * nxv
+                tau_out[1, j, i] = gi * nyv
+                sx += gi * nxv
+                sy += gi * nyv
+                f = gi / m
+                jxx += f * (1.0 - nxv * nxv)
+                jxy += -f * nxv * nyv
+                jyy += f * (1.0 - nyv * nyv)
+                psi += 0.5 * m * m - 0.5 * (m - gi) ** 2
+    return sx, sy, jxx, jxy, jyy, psi
+
+
+def project_on_force(y, g, f, tau_out):
+    """tau_out = Euclidean projection of y onto {|tau_I| <= g_I} intersected with {sum tau = f}.
+
+    The projection is proj_discs(y + lambda) with lambda (MPa) the root of the monotone 2-D map
+    S(lambda) = sum proj_discs(y + lambda) = f (the gradient of a convex dual function), found by a damped
+    Newton iteration on |S - f|. f = F/dA in MPa; requires |f| < sum g.
+    """
+    cap = float(np.sum(g))
+    tol = 1e-13 * cap
+    fx, fy = f
+    n_contact = max(int(np.count_nonzero(g > 0)), 1)
+    sy0 = force_projection_eval(y, g, 0.0, 0.0, tau_out)
+    lx, ly = (fx - sy0[0]) / n_contact, (fy - sy0[1]) / n_contact  # exact if nothing saturates
+    sx, sy, jxx, jxy, jyy, _ = force_projection_eval(y, g, lx, ly, tau_out)
+    err = math.hypot(sx - fx, sy - fy)
+    for _ in range(200):
+        if err <= tol:
+            return
+        rx, ry = sx - fx, sy - fy
+        reg = 1e-12 * (jxx + jyy) + 1e-300
+        a, b, d = jxx + reg, jxy, jyy + reg
+        det = a * d - b * b
+        dx = -(d * rx - b * ry) / det
+        dy = -(-b * rx + a * ry) / det
+        t = 1.0
+        for _ in range(80):
+            nsx, nsy, njxx, njxy, njyy, _ = force_projection_eval(y, g, lx + t * dx, ly + t * dy, tau_out)
+            nerr = math.hypot(nsx - fx, nsy - fy)
+            if nerr < (1.0 - 1e-4 * t) * err:
+                break
+            t *= 0.5
+        else:
+            break
+        lx, ly = lx + t * dx, ly + t * dy
+        sx, sy, jxx, jxy, jyy, err = nsx, nsy, njxx, njxy, njyy, nerr
+    sx, sy, *_ = force_projection_eval(y, g, lx, ly, tau_out)
+    err = math.hypot(sx - fx, sy - fy)
+    if err > 1e-10 * cap:
+        raise ConvergenceError("could not place the starting traction on the force constraint",
+                               solver="tangential/force-projection", residual=err / cap, tol=1e-10)
