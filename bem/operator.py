@@ -18,6 +18,7 @@ import numpy as np
 import pyfftw
 from scipy.fft import next_fast_len
 
+from . import _spectral
 from .errors import InputError
 from .grid import Grid
 from .influence import influence_coefficients
@@ -96,6 +97,8 @@ class _FFTPair:
                                     direction="FFTW_BACKWARD",
                                     flags=flags + ("FFTW_DESTROY_INPUT",), threads=threads)
         self.real_in[...] = 0.0  # planning with FFTW_MEASURE may have scribbled on the buffer
+        self.spec_f = self.spec.view(np.float64)          # (re, im) interleaved views for _spectral
+        self.spec_out_f = self.spec_out.view(np.float64)
 
 
 class HalfSpaceOperator:
@@ -197,23 +200,22 @@ class HalfSpaceOperator:
         lam = np.maximum(lam, PRECONDITIONER_FLOOR * lam.max())
         inv = np.einsum("...ik,...k,...jk->...ij", vec, 1.0 / lam, vec)
         scale = 1.0 / (sy * sx)  # c2r is unnormalised
-        self.inverse_spectra = {"zz": scale / zz, "xx": scale * inv[..., 0, 0],
-                                "yy": scale * inv[..., 1, 1], "xy": scale * inv[..., 0, 1]}
+        symbols = {"zz": scale / zz, "xx": scale * inv[..., 0, 0], "yy": scale * inv[..., 1, 1],
+                   "xy": scale * inv[..., 0, 1]}
+        self.inverse_spectra = {c: np.ascontiguousarray(v, dtype=np.float64) for c, v in symbols.items()}
         with _wisdom_lock:
             self._fft_small = {kk: _FFTPair(kk, self.small, self.threads, planner) for kk in (1, 2)}
             _save_wisdom()
 
     def _stack_blocks(self):
         """Each product's spectra stacked as one complex (outputs, inputs, Py, Px//2+1) array."""
-        s, v = self.spectra, self.inverse_spectra
+        s = self.spectra
 
         def stack(rows):
             return np.ascontiguousarray(np.array([[np.asarray(c, dtype=np.complex128) for c in r] for r in rows]))
 
         blocks = {"normal": stack([[s["zz"]]]),
-                  "tangential": stack([[s["xx"], s["xy"]], [s["xy"], s["yy"]]]),
-                  "normal_inverse": stack([[v["zz"]]]),
-                  "tangential_inverse": stack([[v["xx"], v["xy"]], [v["xy"], v["yy"]]])}
+                  "tangential": stack([[s["xx"], s["xy"]], [s["xy"], s["yy"]]])}
         if self.coupled:
             blocks["t_from_p"] = stack([[s["xz"]], [s["yz"]]])
             blocks["n_from_t"] = stack([[-s["xz"], -s["yz"]]])
@@ -268,15 +270,32 @@ class HalfSpaceOperator:
         res = self._apply((tau_x, tau_y), self._blocks["n_from_t"], None if out is None else out[None])
         return res[0]
 
+    def _apply_symbols(self, fields, out):
+        """Circulant preconditioner on the unpadded period: forward FFT, real symbols (`_spectral`), inverse."""
+        k = len(fields)
+        ny, nx = self.grid.shape
+        f = self._fft_small[k]
+        for i, field in enumerate(fields):
+            f.real_in[i, :ny, :nx] = field
+        f.forward.execute()
+        y = self.inverse_spectra
+        if k == 1:
+            _spectral.scale_1(f.spec_f, y["zz"], f.spec_out_f)
+        else:
+            _spectral.scale_2(f.spec_f, y["xx"], y["xy"], y["yy"], f.spec_out_f)
+        f.backward.execute()
+        if out is None:
+            out = np.empty((k, ny, nx))
+        out[...] = f.real_out[:, :ny, :nx]
+        return out
+
     def normal_inverse(self, residual, out=None):
         """Approximate (A^zz)^-1 r by the Strang-circulant inverse (a preconditioner, not an exact solve)."""
-        res = self._apply((residual,), self._blocks["normal_inverse"], None if out is None else out[None],
-                          self._fft_small)
-        return res[0]
+        return self._apply_symbols((residual,), None if out is None else out[None])[0]
 
     def tangential_inverse(self, res_x, res_y, out=None):
         """Approximate inverse of the 2x2-block tangential operator (preconditioner), shape (2, ny, nx)."""
-        return self._apply((res_x, res_y), self._blocks["tangential_inverse"], out, self._fft_small)
+        return self._apply_symbols((res_x, res_y), out)
 
     # --- small-grid reference --------------------------------------------------------------------
     def dense(self, component: str) -> np.ndarray:
