@@ -60,21 +60,33 @@ def _wisdom_file() -> Path:
     return Path(root) / "fftw-wisdom.pkl"
 
 
+_wisdom_known = {"path": None, "wisdom": None}  # what the process last read or wrote (under _wisdom_lock)
+
+
 def _load_wisdom():
+    path = _wisdom_file()
+    if _wisdom_known["path"] == path:
+        return  # already imported in this process
     try:
-        with open(_wisdom_file(), "rb") as fh:
+        with open(path, "rb") as fh:
             pyfftw.import_wisdom(pickle.load(fh))
     except (OSError, pickle.UnpicklingError, EOFError, TypeError, ValueError):
         pass
+    _wisdom_known.update(path=path, wisdom=pyfftw.export_wisdom())
 
 
 def _save_wisdom():
+    """Write the planner's wisdom if planning added to what this process last read or wrote."""
     path = _wisdom_file()
+    wisdom = pyfftw.export_wisdom()
+    if _wisdom_known["path"] == path and _wisdom_known["wisdom"] == wisdom:
+        return
+    _wisdom_known.update(path=path, wisdom=wisdom)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
         with open(tmp, "wb") as fh:
-            pickle.dump(pyfftw.export_wisdom(), fh)
+            pickle.dump(wisdom, fh)
         os.replace(tmp, path)
     except OSError:
         pass  # a read-only home only costs planning time

@@ -40,6 +40,7 @@ import numba
 import numpy as np
 
 from bem.errors import ConvergenceError, InputError
+from ._memo import ProductMemo
 
 def _max_column_corrections(n_elements):
     """How many truncated elements are corrected by influence columns rather than by one extra FFT.
@@ -256,24 +257,8 @@ def _residual_and_entries(u, h_eff, approach, active, r, deflate, admit=True):
 
 _kernel_cache = weakref.WeakKeyDictionary()
 
-#: Product memo: per operator, the last converged (pressure, A^zz pressure). A rolling step is warm-started
-#: from the previous step's pressure, whose displacement the previous solve already holds, so the initial
-#: product is free when the warm start is bit-for-bit that pressure. The carried u drifts by round-off only
-#: (u += alpha A v is exact in exact arithmetic); it is recomputed by FFT after _MEMO_REUSES reuses.
-_product_memo = weakref.WeakKeyDictionary()
-_MEMO_REUSES = 32
-
-
-def _memo_lookup(op, p):
-    """A^zz p (mm) from the memo if p equals the stored pressure exactly, else None. Returns (u, reuses)."""
-    entry = _product_memo.get(op)
-    if entry is None or entry[2] >= _MEMO_REUSES or entry[0].shape != p.shape or not np.array_equal(entry[0], p):
-        return None, 0
-    return entry[1], entry[2] + 1
-
-
-def _memo_store(op, p, u, reuses):
-    _product_memo[op] = (p.copy(), u.copy(), reuses)
+#: the last converged pressure and its displacement A^zz p, per operator (see solver._memo)
+_memo = ProductMemo(size=1)
 
 
 def _wrapped_kernel(op):
@@ -370,7 +355,7 @@ def solve_normal(op, profile, *, force=None, approach=None, initial=None, extra_
     if initial is not None:
         p = np.maximum(_field("initial", initial, shape), 0.0)
         # a warm start is usually the previous converged pressure, whose A p the memo holds
-        memo, reuses = _memo_lookup(op, p)
+        memo, reuses = _memo.lookup(op, p)
         if deflate and not np.any(p > 0.0):
             p, memo = _cold_start(h_eff, force, dA, op.materials.E_star), None
     elif deflate:
@@ -449,7 +434,7 @@ def solve_normal(op, profile, *, force=None, approach=None, initial=None, extra_
         if not math.isfinite(residual) and rms_p > 0.0:
             break
         if not (ntrunc or entered) and residual <= tol:
-            _memo_store(op, p, u, reuses)
+            _memo.store(op, p, u, reuses)
             return _result(h, extra, p, u, d, dA, iterations, residual)
         if not deflate and not active.any() and rms_p == 0.0:
             return _result(h, extra, p, u, d, dA, iterations, 0.0)

@@ -71,11 +71,11 @@ Force balance and |tau| <= g hold to round-off by construction.
 """
 from dataclasses import dataclass
 import math
-import weakref
 
 import numpy as np
 
 from bem.errors import ConvergenceError, GrossSlidingError, InputError
+from ._memo import ProductMemo, same
 from . import _force_projection as FP
 from . import _tangential_kernels as K
 
@@ -85,28 +85,12 @@ CAPACITY_MARGIN = 1e-9
 #: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
 _MAX_TURN = 0.5
 
-#: Product memo: per operator, the last two converged (traction, A^tt traction) pairs. The next rolling step
-#: passes the previous traction back as tau', so A tau' is free when tau' is bit-for-bit a stored traction.
-#: The carried u drifts by round-off only; it is recomputed by FFT after _MEMO_REUSES reuses.
-_product_memo = weakref.WeakKeyDictionary()
-_MEMO_REUSES = 32
+#: the last two converged tractions and their displacements A^tt tau, per operator (see solver._memo)
+_memo = ProductMemo(size=2)
 #: Safeguard 1: products without halving the best exact residual before releases become conservative.
 _STALL_PRODUCTS = 30
 #: Safeguard 2: an exact re-synchronisation that finds the residual above _SYNC_JUMP tol switches to exact u.
 _SYNC_JUMP = 1e4
-
-
-def _memo_lookup(op, tau):
-    """(A tau, reuses) from the memo if tau equals a stored traction exactly, else (None, 0)."""
-    for stored, u, reuses in _product_memo.get(op, ()):
-        if reuses < _MEMO_REUSES and stored.shape == tau.shape and np.array_equal(stored, tau):
-            return u, reuses + 1
-    return None, 0
-
-
-def _memo_store(op, tau, u, reuses):
-    entries = [e for e in _product_memo.get(op, ()) if not np.array_equal(e[0], tau)]
-    _product_memo[op] = [(tau.copy(), u.copy(), reuses)] + entries[:1]
 
 
 @dataclass(frozen=True)
@@ -240,7 +224,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                              "finite values (mm) required")
         u_prev[...] = u_given
     elif np.any(tau_p):
-        memo, memo_reuses = _memo_lookup(op, tau_p)
+        memo, memo_reuses = _memo.lookup(op, tau_p)
         if memo is not None:
             u_prev[...] = memo
         else:
@@ -248,15 +232,15 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
         return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, 0, 0.0, True, force_mode)
     tau[...] = tau_p if initial is None else np.asarray(initial, dtype=float)
-    if not np.all(np.isfinite(tau)):
+    if not math.isfinite(float(tau.sum())) and not np.all(np.isfinite(tau)):  # the sum is the cheap test
         raise InputError("initial traction must be finite")
     FP.project_discs(tau, g)
     if force_mode:
         FP.project_on_force(tau.copy(), g, F / dA, tau)
-    if np.array_equal(tau, tau_p):
+    if same(tau, tau_p):
         u[...] = u_prev
     elif np.any(tau):
-        memo, reuses = _memo_lookup(op, tau)
+        memo, reuses = _memo.lookup(op, tau)
         if memo is not None:
             u[...] = memo
             memo_reuses = max(memo_reuses, reuses)
@@ -335,7 +319,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             if synced:
                 if force_mode and not np.any(region == 1):
                     _stick_point_shift(w, g, region, dU, slip)
-                _memo_store(op, tau, u, memo_reuses)
+                _memo.store(op, tau, u, memo_reuses)
                 return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products,
                                residual_rel, True, force_mode)
             matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
