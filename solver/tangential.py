@@ -53,7 +53,9 @@ Cycling safeguard: a cold solve close to the bound on fine grids (217^2, f_t >= 
 release and projection. When the best exact residual has not halved for _STALL_PRODUCTS products, releases
 become conservative (only once the face residual is below the violation); if that stalls too, the iteration
 returns to the best exact iterate. When an exact re-synchronisation finds the residual far above the
-tolerance (drift of the self-coefficient updates on dense slip areas), u is kept exact from then on.
+tolerance (drift of the self-coefficient updates on dense slip areas), u is kept exact from then on. One
+early re-synchronisation, when the residual first falls below _SYNC_EARLY tol, removes the drift of the large
+early moves without restarting the recurrence, so that the final check rarely fails.
 Product memo: A tau' is taken from the previous solve when tau' is its traction (rolling), see
 `previous_displacement`.
 
@@ -91,6 +93,10 @@ _memo = ProductMemo(size=2)
 _STALL_PRODUCTS = 30
 #: Safeguard 2: an exact re-synchronisation that finds the residual above _SYNC_JUMP tol switches to exact u.
 _SYNC_JUMP = 1e4
+#: One early exact re-synchronisation when the residual first falls below _SYNC_EARLY tol: the drift of the
+#: self-coefficient updates made in the large early moves is then removed while the CG recurrence continues,
+#: so the final check usually passes at once (paper rolling: 26 -> 22 products per ratcheting step).
+_SYNC_EARLY = 1e4
 
 
 @dataclass(frozen=True)
@@ -268,6 +274,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     stage = 0
     best, best_at, released = math.inf, 0, 0
     it = 0
+    early_synced = False
     while True:
         # slip of the step for the current traction and division
         n_stick, n_slip, *gram = K.classify(tau, g, region, nrm, u, u_prev, e_arr, e is not None, w)
@@ -315,6 +322,11 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             # keep u exact after every step from now on.
             exact = True
         exact_after_sync = False
+        if not (synced or early_synced) and residual_rel < _SYNC_EARLY * tol:
+            matvec(tau, u)  # early exact re-synchronisation; the CG recurrence is kept
+            synced = early_synced = True
+            memo_reuses = 0
+            continue
         if residual_rel < tol:
             if synced:
                 if force_mode and not np.any(region == 1):
