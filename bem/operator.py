@@ -60,36 +60,45 @@ def _wisdom_file() -> Path:
     return Path(root) / "fftw-wisdom.pkl"
 
 
-_wisdom_known = {"path": None, "wisdom": None}  # what the process last read or wrote (under _wisdom_lock)
+_wisdom_loaded = set()   # wisdom files imported by this process
+_planned = set()         # (k, shape, threads, planner) planned by this process: their wisdom is on disk
 
 
 def _load_wisdom():
     path = _wisdom_file()
-    if _wisdom_known["path"] == path:
-        return  # already imported in this process
+    if path in _wisdom_loaded:
+        return
+    _wisdom_loaded.add(path)
     try:
         with open(path, "rb") as fh:
             pyfftw.import_wisdom(pickle.load(fh))
     except (OSError, pickle.UnpicklingError, EOFError, TypeError, ValueError):
         pass
-    _wisdom_known.update(path=path, wisdom=pyfftw.export_wisdom())
 
 
 def _save_wisdom():
-    """Write the planner's wisdom if planning added to what this process last read or wrote."""
     path = _wisdom_file()
-    wisdom = pyfftw.export_wisdom()
-    if _wisdom_known["path"] == path and _wisdom_known["wisdom"] == wisdom:
-        return
-    _wisdom_known.update(path=path, wisdom=wisdom)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
         with open(tmp, "wb") as fh:
-            pickle.dump(wisdom, fh)
+            pickle.dump(pyfftw.export_wisdom(), fh)
         os.replace(tmp, path)
     except OSError:
         pass  # a read-only home only costs planning time
+
+
+def _fft_pairs(ks, shape, threads, planner):
+    """{k: _FFTPair} for batches of k fields of `shape`. Plans come from the on-disk FFTW wisdom; the wisdom
+    is written back only when this process plans a transform for the first time (exporting it costs ms)."""
+    with _wisdom_lock:
+        _load_wisdom()
+        pairs = {k: _FFTPair(k, shape, threads, planner) for k in ks}
+        keys = {(k, tuple(shape), threads, planner) for k in ks}
+        if not keys <= _planned:
+            _planned.update(keys)
+            _save_wisdom()
+    return pairs
 
 
 class _FFTPair:
@@ -141,10 +150,7 @@ class HalfSpaceOperator:
         comps = ("zz", "xx", "yy", "xy") + (("xz", "yz") if self.coupled else ())
         kernels = self._kernels(comps)
         self.self_coefficients = {c: float(k[0, 0]) for c, k in kernels.items()}
-        with _wisdom_lock:
-            _load_wisdom()
-            self._fft = {k: _FFTPair(k, self.padded, self.threads, planner) for k in (1, 2, 3)}
-            _save_wisdom()
+        self._fft = _fft_pairs((1, 2, 3), self.padded, self.threads, planner)
         scale = 1.0 / (self.padded[0] * self.padded[1])  # c2r is unnormalised: fold 1/N into spectra
         self.spectra = {}
         f1 = self._fft[1]
@@ -215,9 +221,7 @@ class HalfSpaceOperator:
         symbols = {"zz": scale / zz, "xx": scale * inv[..., 0, 0], "yy": scale * inv[..., 1, 1],
                    "xy": scale * inv[..., 0, 1]}
         self.inverse_spectra = {c: np.ascontiguousarray(v, dtype=np.float64) for c, v in symbols.items()}
-        with _wisdom_lock:
-            self._fft_small = {kk: _FFTPair(kk, self.small, self.threads, planner) for kk in (1, 2)}
-            _save_wisdom()
+        self._fft_small = _fft_pairs((1, 2), self.small, self.threads, planner)
 
     def _stack_blocks(self):
         """Each product's spectra stacked as one complex (outputs, inputs, Py, Px//2+1) array."""
