@@ -27,6 +27,20 @@ def _mag(x, y):
     return math.sqrt(x * x + y * y)
 
 
+@nb.njit(cache=True, inline="always")
+def _gram_terms(slip, nxv, nyv, wx, wy):
+    """One element's terms of the shift fit (see `gram_and_fit`): (Gxx, Gxy, Gyy, bx, by) increments.
+
+    Stick: the identity and w; slip (unit direction n = (nxv, nyv), tangent t = (-n_y, n_x)): t t^T and t (t.w).
+    """
+    if not slip:
+        return 1.0, 0.0, 1.0, wx, wy
+    tx = -nyv
+    ty = nxv
+    ws = tx * wx + ty * wy
+    return tx * tx, tx * ty, ty * ty, tx * ws, ty * ws
+
+
 @_jit
 def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
     """Division and shift fit of the current iterate, in one pass.
@@ -58,28 +72,24 @@ def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
                 region[j, i] = 0
                 continue
             m = _mag(tau[0, j, i], tau[1, j, i])
-            if m >= (1.0 - ON_BOUND) * gi:
+            slip = m >= (1.0 - ON_BOUND) * gi
+            nxv = nyv = 0.0
+            if slip:
                 region[j, i] = 2
                 nxv = tau[0, j, i] / m
                 nyv = tau[1, j, i] / m
                 nrm[0, j, i] = nxv
                 nrm[1, j, i] = nyv
                 n_slip += 1
-                tx = -nyv
-                ty = nxv
-                gxx += tx * tx
-                gxy += tx * ty
-                gyy += ty * ty
-                ws = tx * wx + ty * wy
-                bx += tx * ws
-                by += ty * ws
             else:
                 region[j, i] = 1
                 n_stick += 1
-                gxx += 1.0
-                gyy += 1.0
-                bx += wx
-                by += wy
+            a, b, c, d, e = _gram_terms(slip, nxv, nyv, wx, wy)
+            gxx += a
+            gxy += b
+            gyy += c
+            bx += d
+            by += e
     return n_stick, n_slip, gxx, gxy, gyy, bx, by
 
 
@@ -101,20 +111,14 @@ def gram_and_fit(nrm, region, w):
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
-            if r == 1:
-                gxx += 1.0
-                gyy += 1.0
-                bx += w[0, j, i]
-                by += w[1, j, i]
-            elif r == 2:
-                tx = -nrm[1, j, i]
-                ty = nrm[0, j, i]
-                gxx += tx * tx
-                gxy += tx * ty
-                gyy += ty * ty
-                ws = tx * w[0, j, i] + ty * w[1, j, i]
-                bx += tx * ws
-                by += ty * ws
+            if r == 0:
+                continue
+            a, b, c, d, e = _gram_terms(r == 2, nrm[0, j, i], nrm[1, j, i], w[0, j, i], w[1, j, i])
+            gxx += a
+            gxy += b
+            gyy += c
+            bx += d
+            by += e
     return gxx, gxy, gyy, bx, by
 
 
