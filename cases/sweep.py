@@ -24,7 +24,7 @@ Failures: a run that raises a `RollcontactError` (no convergence, grid too large
 is recorded with status 'failed' and its message; the other runs go on.
 
 Parallelism: local processes by default (`concurrent.futures.ProcessPoolExecutor`, 'forkserver' context
-with the solver modules preloaded, one BLAS/numba thread per worker; FFTW threads come from the scene,
+with the solver modules preloaded, one BLAS thread per worker; FFTW threads come from the scene,
 `[solver] threads`, default 1); `jobs=1` runs in this process; `scheduler=ADDRESS` submits the runs to a Dask
 distributed cluster (optional extra `dask`, imported only then).
 
@@ -383,17 +383,16 @@ def _csv_parse(k, v):
 
 # ------------------------------------------------------------------------------------- execution
 def _worker_init(sweep_pid: int):
-    """Worker set-up: one BLAS/numba thread, and exit if the sweep process dies (e.g. SIGKILL).
+    """Worker set-up: one BLAS thread, and exit if the sweep process dies (e.g. SIGKILL).
 
+    numba's thread settings are left alone: the kernels are serial (no parallel=True), and changing
+    NUMBA_NUM_THREADS after numba is imported (the fork server preloads it) makes every later compilation in
+    the worker fail ("Cannot set NUMBA_NUM_THREADS to a different value once the threads have been
+    launched") - which a worker meets whenever numba's on-disk cache misses, e.g. on a fresh install.
     With 'forkserver' the worker's parent is the fork server, which outlives a killed sweep, so the sweep's
     own pid is watched (twice a second) besides the parent's."""
-    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMBA_NUM_THREADS"):
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ[var] = "1"
-    try:
-        import numba
-        numba.set_num_threads(1)
-    except Exception:                       # pragma: no cover - numba without threading layer
-        pass
     signal.signal(signal.SIGINT, signal.SIG_IGN)    # Ctrl-C is handled by the parent, which stops us
     parent = os.getppid()
 

@@ -251,3 +251,14 @@ def test_limit_search_refuses_varying_both_or_neither_coordinate(base, tmp_path)
         search_limits(base, ["motion.w=0.2", "load.ft=0.5"], tmp_path, overrides=COARSE, progress=None)
     with pytest.raises(SceneError, match="vary motion.w"):
         search_limits(base, ["motion.angle=0,90"], tmp_path, overrides=COARSE, progress=None)
+
+
+def test_a_worker_still_compiles_numba_code_after_its_set_up():
+    # Regression: the worker set-up used to change NUMBA_NUM_THREADS after numba was imported, and every later
+    # compilation in that worker then raised RuntimeError - which a sweep meets whenever numba's on-disk cache
+    # misses (a fresh install, or edited sources): all runs failed. A fresh njit function forces a compilation.
+    code = ("import os, numba; from cases.sweep import _worker_init; _worker_init(os.getpid()); "
+            "print(numba.njit(lambda x: x + 1)(1))")
+    out = subprocess.run([sys.executable, "-c", code], cwd=Path(__file__).resolve().parents[2],
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0 and out.stdout.strip() == "2", out.stderr[-2000:]
