@@ -1,7 +1,8 @@
-"""Multiply stage of the circulant preconditioners: spectra times real symbols, one compiled pass.
+"""Multiply stage of the uncoupled products and of the circulant preconditioners: spectra times real symbols.
 
-The preconditioners' symbols (Strang-circulant inverses of the even zz, xx, yy kernels and the odd xy
-kernel) are real (`HalfSpaceOperator._build_inverses`), so each spectral value is scaled, not rotated.
+The zz, xx, yy kernels are even and the xy kernel is odd in both offsets, so their spectra (padded products)
+and the Strang-circulant inverses built from them (preconditioners, `HalfSpaceOperator._build_inverses`) are
+real: each spectral value is scaled, not rotated.
 The complex spectra are passed as float64 views (re, im interleaved along the last axis), so a symbol
 value applies to two neighbouring entries. On the small grids of a preconditioner the numpy route (one
 ufunc call per block and a temporary) costs more in call overhead than in arithmetic.
@@ -25,9 +26,10 @@ def scale_2(spec, sxx, sxy, syy, out):
     """(out_x, out_y) = [[sxx, sxy], [sxy, syy]] (spec_x, spec_y) for a symmetric 2x2 block of symbols."""
     py, pxh = sxx.shape
     for j in range(py):
-        for k in range(2 * pxh):
-            h = k // 2
-            x = spec[0, j, k]
-            y = spec[1, j, k]
-            out[0, j, k] = sxx[j, h] * x + sxy[j, h] * y
-            out[1, j, k] = sxy[j, h] * x + syy[j, h] * y
+        for h in range(pxh):
+            a, b, c = sxx[j, h], sxy[j, h], syy[j, h]
+            for k in (2 * h, 2 * h + 1):  # real and imaginary part
+                x = spec[0, j, k]
+                y = spec[1, j, k]
+                out[0, j, k] = a * x + b * y
+                out[1, j, k] = b * x + c * y

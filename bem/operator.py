@@ -160,13 +160,7 @@ class HalfSpaceOperator:
             self.spectra[c] = f1.spec[0].copy() * scale
         f1.real_in[...] = 0.0
         self._build_inverses(planner)
-        self._blocks = self._stack_blocks()
-        # the per-component spectra become views of the stacked blocks (one copy in memory)
-        b = self._blocks
-        self.spectra = {"zz": b["normal"][0, 0], "xx": b["tangential"][0, 0], "xy": b["tangential"][0, 1],
-                        "yy": b["tangential"][1, 1]}
-        if self.coupled:
-            self.spectra.update(xz=b["t_from_p"][0, 0], yz=b["t_from_p"][1, 0])
+        self._blocks = self._coupling_blocks() if self.coupled else {}
         # zz, xx, yy are even and xy is odd in both offsets, so their spectra are real (imaginary parts are
         # round-off, ~1e-14 of the real ones): the products multiply by real symbols (`_spectral`), a third of
         # the arithmetic and half the memory traffic of complex blocks. xz, yz (odd in one offset) are
@@ -228,19 +222,11 @@ class HalfSpaceOperator:
         self.inverse_spectra = {c: np.ascontiguousarray(v, dtype=np.float64) for c, v in symbols.items()}
         self._fft_small = _fft_pairs((1, 2), self.small, self.threads, planner)
 
-    def _stack_blocks(self):
-        """Each product's spectra stacked as one complex (outputs, inputs, Py, Px//2+1) array."""
+    def _coupling_blocks(self):
+        """The coupling products' (imaginary) spectra stacked as complex (outputs, inputs, Py, Px//2+1) arrays."""
         s = self.spectra
-
-        def stack(rows):
-            return np.ascontiguousarray(np.array([[np.asarray(c, dtype=np.complex128) for c in r] for r in rows]))
-
-        blocks = {"normal": stack([[s["zz"]]]),
-                  "tangential": stack([[s["xx"], s["xy"]], [s["xy"], s["yy"]]])}
-        if self.coupled:
-            blocks["t_from_p"] = stack([[s["xz"]], [s["yz"]]])
-            blocks["n_from_t"] = stack([[-s["xz"], -s["yz"]]])
-        return blocks
+        return {"t_from_p": np.ascontiguousarray(np.array([[s["xz"]], [s["yz"]]])),
+                "n_from_t": np.ascontiguousarray(np.array([[-s["xz"], -s["yz"]]]))}
 
     # --- application -----------------------------------------------------------------------------
     def _apply(self, fields, blocks, out, ffts=None):

@@ -12,22 +12,9 @@ from bem.errors import ConvergenceError
 from ._tangential_kernels import _jit, _mag
 
 
-@_jit
 def project_discs(tau, g):
     """tau <- radial projection onto |tau_I| <= g_I; zero where g = 0 (in place)."""
-    ny, nx = g.shape
-    for j in range(ny):
-        for i in range(nx):
-            gi = g[j, i]
-            if gi <= 0.0:
-                tau[0, j, i] = 0.0
-                tau[1, j, i] = 0.0
-                continue
-            m = _mag(tau[0, j, i], tau[1, j, i])
-            if m > gi:
-                f = gi / m
-                tau[0, j, i] *= f
-                tau[1, j, i] *= f
+    force_projection_eval(tau, g, 0.0, 0.0, tau)  # element by element, so in place is safe
 
 
 @_jit
