@@ -1,0 +1,135 @@
+"""Where the tangential iterations go: the fixed-division PCG floor against `solve_tangential`.
+
+Issue #3 asks for <= 15 iterations per step warm-started after a small load or profile change and for
+nearly flat cold counts under refinement. On the Cattaneo scene of `tangential_cattaneo.py` (seed scene,
+grid = contact + 0.6 mm, dx = 0.2 / 0.1 / 0.05 mm, tol = 1e-8) this separates the linear algebra from the
+identification of the stick/slip division:
+
+* floor: with the final division of the solve known in advance and the slip tractions fixed at their final
+  values, the step is linear in the stick tractions: A_SS (tau_S - tau'_S) = dU - (A (tau_slip - tau'_slip))_S
+  with sum tau = F. Plain deflated PCG (force constraint as in the solver, preconditioner P_S M P_S with
+  M = `op.tangential_inverse`) is counted until max_S |slip| <= tol a_self max g (the solver's criterion),
+  from the previous step's traction restricted to S (warm) or from zero (cold). Products counted:
+  one per iteration plus the start product.
+* `solve_tangential` on the same steps, all products counted (`TangentialResult.iterations`).
+
+Usage: .venv/bin/python benchmarks/tangential_warm_limits.py [--dx 0.2 0.1 0.05]
+Writes benchmarks/results/tangential_warm_limits.json and prints a Markdown table.
+"""
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from tangential_cattaneo import FN, MATS, MU, R, HERTZ
+
+ROOT = Path(__file__).resolve().parents[1]
+
+from bem import Grid, HalfSpaceOperator  # noqa: E402
+from solver.normal import solve_normal  # noqa: E402
+from solver.tangential import TangentialParams, solve_tangential  # noqa: E402
+
+
+def self_coefficient(op):
+    """max(A^xx_II, A^yy_II) (mm/MPa), the scale of the solver's residual."""
+    ny, nx = op.grid.shape
+    unit = np.zeros((ny, nx))
+    unit[ny // 2, nx // 2] = 1.0
+    ux = op.tangential(unit, np.zeros_like(unit))[0][ny // 2, nx // 2]
+    uy = op.tangential(np.zeros_like(unit), unit)[1][ny // 2, nx // 2]
+    return max(ux, uy)
+
+
+def fixed_division_pcg(op, final, previous, start, force, dA, bound, max_iter=500):
+    """Deflated PCG for the stick tractions of `final`'s division (slip tractions fixed at final values).
+
+    previous: tau' (2, ny, nx); start: initial traction on S (2, ny, nx); force: (Fx, Fy) N.
+    Returns (products, max relative error of tau against final.traction) at max_S |slip| <= bound.
+    """
+    stick = final.region == 1
+    mask = stick[None].astype(float)
+    slip_part = np.where(final.region == 2, final.traction, 0.0)
+    tau = slip_part + mask * start
+    count = stick.sum()
+    for k in range(2):   # the iterate carries the prescribed force: shift the stick tractions uniformly
+        tau[k][stick] += (force[k] / dA - tau[k].sum()) / count
+    products = 1
+    u = op.tangential(*(tau - previous))
+    def residual(u):
+        du = np.array([u[k][stick].mean() for k in range(2)])     # dU: least-squares multiplier
+        return mask * -(u - du[:, None, None])
+    r = residual(u)
+    v = np.zeros_like(r)
+    rz_old = 0.0
+    while np.abs(r).max() > bound and products < max_iter:
+        z = mask * op.tangential_inverse(*r)
+        for k in range(2):
+            z[k][stick] -= z[k][stick].mean()
+        rz = float((r * z).sum())
+        v = z + (rz / rz_old) * v if rz_old else z
+        rz_old = rz
+        q = op.tangential(*v)
+        products += 1
+        qs = mask * q
+        alpha = rz / float((v * qs).sum())
+        tau += alpha * v
+        u += alpha * q
+        r = residual(u)
+    err = np.abs(tau - final.traction).max() / final.traction.max()
+    return products, float(err)
+
+
+def run(dx, params):
+    a = HERTZ.a
+    grid = Grid.covering(-a - 0.6, a + 0.6, -a - 0.6, a + 0.6, dx, dx)
+    op = HalfSpaceOperator(grid, MATS, threads=1)
+    X, Y = grid.mesh()
+    normal = solve_normal(op, (X ** 2 + Y ** 2) / (2 * R), force=FN)
+    shifted = solve_normal(op, (X ** 2 + (Y - dx) ** 2) / (2 * R), force=FN, initial=normal.pressure)
+    g, g2 = MU * normal.pressure, MU * shifted.pressure
+    zero = np.zeros((2,) + grid.shape)
+    F = lambda f: (f * MU * FN, 0.0)
+    dA = grid.cell_area
+    bound = params.tol * self_coefficient(op) * g.max()
+    cold = solve_tangential(op, g, zero, force=F(0.5), params=params)
+    load = solve_tangential(op, g, cold.traction, force=F(0.52), params=params)
+    moved = solve_tangential(op, g2, cold.traction, force=F(0.5), params=params)
+    floor_cold = fixed_division_pcg(op, cold, zero, zero, F(0.5), dA, bound)
+    floor_load = fixed_division_pcg(op, load, cold.traction, cold.traction, F(0.52), dA, bound)
+    floor_moved = fixed_division_pcg(op, moved, cold.traction, cold.traction, F(0.5), dA, bound)
+    return dict(dx=dx, grid=list(grid.shape), stick_elements=int((cold.region == 1).sum()),
+                solver=dict(cold=cold.iterations, load=load.iterations, profile=moved.iterations),
+                floor=dict(cold=floor_cold, load=floor_load, profile=floor_moved))
+
+
+def markdown(rows):
+    lines = ["| dx mm | grid | stick elements | cold: solver / floor | warm load: solver / floor "
+             "| warm profile: solver / floor |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        s, f = r["solver"], r["floor"]
+        lines.append(f"| {r['dx']} | {r['grid'][0]}^2 | {r['stick_elements']} | {s['cold']} / {f['cold'][0]} "
+                     f"| {s['load']} / {f['load'][0]} | {s['profile']} / {f['profile'][0]} |")
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1, 0.05])
+    parser.add_argument("--output", default=str(ROOT / "benchmarks" / "results" / "tangential_warm_limits.json"))
+    args = parser.parse_args(argv)
+    params = TangentialParams()
+    rows = []
+    for dx in args.dx:
+        rows.append(run(dx, params))
+        print(rows[-1], flush=True)
+    path = Path(args.output)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(dict(benchmark="tangential_warm_limits", tol=params.tol, rows=rows), indent=1))
+    print(markdown(rows))
+    print(f"\nwritten {path}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
