@@ -38,14 +38,20 @@ def median_time(fn, repeats):
     return out, statistics.median(times)
 
 
-def run(dx, repeats, near_bound):
+def cattaneo_scene(dx):
+    """Grid (contact + 0.6 mm), one-thread operator, mesh, and the bounds g = mu p of the Hertz contact and of
+    the same contact moved by one cell in y (MPa)."""
     a = HERTZ.a
     grid = Grid.covering(-a - 0.6, a + 0.6, -a - 0.6, a + 0.6, dx, dx)
     op = HalfSpaceOperator(grid, MATS, threads=1)
     X, Y = grid.mesh()
     normal = solve_normal(op, (X ** 2 + Y ** 2) / (2 * R), force=FN)
     shifted = solve_normal(op, (X ** 2 + (Y - dx) ** 2) / (2 * R), force=FN, initial=normal.pressure)
-    g, g2 = MU * normal.pressure, MU * shifted.pressure
+    return grid, op, X, Y, MU * normal.pressure, MU * shifted.pressure
+
+
+def run(dx, repeats, near_bound):
+    grid, op, X, Y, g, g2 = cattaneo_scene(dx)
     zero = np.zeros((2,) + grid.shape)
     F = lambda f: (f * MU * FN, 0.0)
     tx, ty = np.random.default_rng(0).random((2,) + grid.shape)

@@ -23,12 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
-from tangential_cattaneo import FN, MATS, MU, R, HERTZ
+from tangential_cattaneo import FN, MU, cattaneo_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 
-from bem import Grid, HalfSpaceOperator  # noqa: E402
-from solver.normal import solve_normal  # noqa: E402
 from solver.tangential import TangentialParams, solve_tangential  # noqa: E402
 
 
@@ -82,13 +80,7 @@ def fixed_division_pcg(op, final, previous, start, force, dA, bound, max_iter=50
 
 
 def run(dx, params):
-    a = HERTZ.a
-    grid = Grid.covering(-a - 0.6, a + 0.6, -a - 0.6, a + 0.6, dx, dx)
-    op = HalfSpaceOperator(grid, MATS, threads=1)
-    X, Y = grid.mesh()
-    normal = solve_normal(op, (X ** 2 + Y ** 2) / (2 * R), force=FN)
-    shifted = solve_normal(op, (X ** 2 + (Y - dx) ** 2) / (2 * R), force=FN, initial=normal.pressure)
-    g, g2 = MU * normal.pressure, MU * shifted.pressure
+    grid, op, X, Y, g, g2 = cattaneo_scene(dx)
     zero = np.zeros((2,) + grid.shape)
     F = lambda f: (f * MU * FN, 0.0)
     dA = grid.cell_area
