@@ -82,10 +82,10 @@ def run_grid(n, tol):
                           initial=cold.pressure)
     floor["warm"] = dict(iterations=it)
     warm = {}
-    for label, s, moved in (("one cell, previous field", 1.0, False), ("0.4 cell, previous field", 0.4, False),
-                            ("one cell, moving warm start", 1.0, True),
-                            ("1.4 cells, moving warm start (rounded to 1)", 1.4, True)):
-        guess = shifted_field(cold.pressure, 0, round(s)) if moved else cold.pressure
+    for label, s, translate in (("one cell, previous field", 1.0, False), ("0.4 cell, previous field", 0.4, False),
+                                ("one cell, moving warm start", 1.0, True),
+                                ("1.4 cells, moving warm start (rounded to 1)", 1.4, True)):
+        guess = shifted_field(cold.pressure, 0, round(s)) if translate else cold.pressure
         res = solve_normal(op, profile(s), force=FN, initial=guess, params=params)
         warm[label] = res.iterations
     return dict(n=n, dx=dx, contact_elements=int(active.sum()), cold_iterations=cold.iterations,
@@ -94,7 +94,7 @@ def run_grid(n, tol):
 
 def markdown(rows):
     warm_keys = list(rows[0]["warm"])
-    head = ("| grid | cold NormCG | floor: PCG on C* | D M D, gamma = +0.1 / -0.1 | "
+    head = ("| grid | cold NormCG | floor: PCG on C* from 0 | D M D, gamma = +0.1 / -0.1 | PCG on C' from previous | "
             + " | ".join(warm_keys) + " |")
     lines = [head, "|" + "---|" * (5 + len(warm_keys))]
     for r in rows:

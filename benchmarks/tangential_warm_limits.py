@@ -30,16 +30,6 @@ ROOT = Path(__file__).resolve().parents[1]
 from solver.tangential import TangentialParams, solve_tangential  # noqa: E402
 
 
-def self_coefficient(op):
-    """max(A^xx_II, A^yy_II) (mm/MPa), the scale of the solver's residual."""
-    ny, nx = op.grid.shape
-    unit = np.zeros((ny, nx))
-    unit[ny // 2, nx // 2] = 1.0
-    ux = op.tangential(unit, np.zeros_like(unit))[0][ny // 2, nx // 2]
-    uy = op.tangential(np.zeros_like(unit), unit)[1][ny // 2, nx // 2]
-    return max(ux, uy)
-
-
 def fixed_division_pcg(op, final, previous, start, force, dA, bound, max_iter=500):
     """Deflated PCG for the stick tractions of `final`'s division (slip tractions fixed at final values).
 
@@ -84,7 +74,8 @@ def run(dx, params):
     zero = np.zeros((2,) + grid.shape)
     F = lambda f: (f * MU * FN, 0.0)
     dA = grid.cell_area
-    bound = params.tol * self_coefficient(op) * g.max()
+    a_self = max(op.self_coefficients["xx"], op.self_coefficients["yy"])  # the solver's residual scale
+    bound = params.tol * a_self * g.max()
     cold = solve_tangential(op, g, zero, force=F(0.5), params=params)
     load = solve_tangential(op, g, cold.traction, force=F(0.52), params=params)
     moved = solve_tangential(op, g2, cold.traction, force=F(0.5), params=params)
