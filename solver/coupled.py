@@ -70,6 +70,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
                               params=normal_params)
         extra = op.tangential_from_pressure(normal.pressure - p_prev)
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, initial=tau, extra_slip=extra,
+                                previous_region=None if outer == 1 else tang.region,
                                 params=tangential_params)
         pmax = float(normal.pressure.max())
         dp = float(np.abs(normal.pressure - p).max()) / pmax

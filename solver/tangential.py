@@ -154,7 +154,7 @@ class _Workspace:
 
 
 def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, initial=None,
-                     extra_slip=None, previous_displacement=None,
+                     extra_slip=None, previous_displacement=None, previous_region=None,
                      params=TangentialParams()) -> "TangentialResult":
     """Solve one step of the transient tangential problem (theory.md §5.1).
 
@@ -172,6 +172,14 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         `TangentialResult.displacement` minus its extra slip; saves the product A tau'. Without it the
         product is taken from the solver's memo when tau' is the traction of a recent solve on `op`
         (the rolling case), else computed.
+    previous_region : optional (ny, nx) region of a solve whose traction is `initial` (int8, 2 = slip),
+        e.g. the previous outer iteration of the coupled loop: its slip elements start on the new bound
+        (tau = g tau/|tau|) even where the bound grew, and the start is put on the force by shifting the
+        stick elements only (`_place_on_force`). Without it the start is the Euclidean projection of
+        `initial` onto the discs and the force, which puts an element whose bound grew, and about half of
+        the elements on the bound, inside the disc, i.e. in stick, and the division must be found again
+        (coupled loop: about 2x the products). Not used for rolling steps, where it measured worse (the
+        pressure moves by a cell: 11.1 -> 13.6 products per step).
     params : TangentialParams.
 
     Returns TangentialResult; raises GrossSlidingError when |F| >= sum g dA (no equilibrium) and
@@ -241,8 +249,16 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     if not math.isfinite(float(tau.sum())) and not np.all(np.isfinite(tau)):  # the sum is the cheap test
         raise InputError("initial traction must be finite")
     FP.project_discs(tau, g)
-    if force_mode:
-        FP.project_on_force(tau.copy(), g, F / dA, tau)
+    if previous_region is None:
+        if force_mode:
+            FP.project_on_force(tau.copy(), g, F / dA, tau)
+    else:
+        prev_region = np.asarray(previous_region)
+        if prev_region.shape != shape:
+            raise InputError(f"previous_region has shape {prev_region.shape}, the grid is {shape}")
+        _keep_slip_on_bound(tau, g, prev_region)
+        if force_mode:
+            _place_on_force(tau, g, F / dA, region, u, axx, ayy)
     if same(tau, tau_p):
         u[...] = u_prev
     elif np.any(tau):
@@ -381,6 +397,31 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             synced = True
             memo_reuses = 0
         it += 1
+
+
+def _keep_slip_on_bound(tau, g, prev_region):
+    """Elements that slipped in the previous step start on their (new) bound: tau = g tau/|tau|."""
+    m = np.hypot(tau[0], tau[1])
+    sel = (prev_region == 2) & (g > 0) & (m > 0)
+    f = np.where(sel, g / np.where(m > 0, m, 1.0), 1.0)
+    tau *= f
+
+
+def _place_on_force(tau, g, f_cells, region, u, axx, ayy):
+    """Put the start on the force constraint sum tau = f_cells (MPa x elements) by a uniform shift of the
+    elements inside their disc (those pushed out are projected, see `K.restore_force`); the elements on
+    the bound stay there. The Euclidean projection onto discs and force (the fallback when no element is
+    left inside) would move about half of them inside, into stick, and the solver would have to find them
+    again one projection event at a time: from the converged traction perturbed by 1e-6 g in stick, 86
+    products against 19 at dx = 0.05 (f_t = 0.5). Writes region (and u by self coefficients, a scratch
+    buffer here)."""
+    m = np.hypot(tau[0], tau[1])
+    region[...] = np.where(g <= 0, 0, np.where(m >= (1 - K.ON_BOUND) * g, 2, 1))
+    n_stick = int(np.count_nonzero(region == 1))
+    tol = 1e-15 * float(np.sum(g))
+    if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
+                       float(tau[1].sum()), n_stick):
+        FP.project_on_force(tau.copy(), g, f_cells, tau)
 
 
 def _stick_point_shift(w, g, region, dU, slip):

@@ -224,3 +224,41 @@ def test_previous_displacement_and_memo_give_the_same_step(scene):
                                 previous_displacement=scene.op.tangential(*first.traction))
     np.testing.assert_allclose(given.shift_increment, computed.shift_increment, rtol=1e-7)
     np.testing.assert_allclose(given.traction, computed.traction, atol=1e-7 * g.max())
+
+
+def test_start_placement_keeps_elements_on_the_bound_and_meets_the_force(scene):
+    """The start is put on the force constraint by shifting only the elements inside their disc: elements on
+    the bound stay on it (same traction), |tau| <= g everywhere and sum tau dA = F to round-off."""
+    from solver import _tangential_kernels as K
+    from solver.tangential import _place_on_force
+    res = scene.cattaneo(0.5)
+    g, dA = scene.bound, scene.grid.cell_area
+    tau = res.traction.copy()
+    on_bound = np.hypot(*tau) >= (1 - K.ON_BOUND) * g
+    on_bound &= g > 0
+    assert on_bound.sum() > 100  # the Cattaneo slip ring
+    target = np.array([0.53 * MU * FN, 0.02 * MU * FN]) / dA  # a force the previous traction does not carry
+    region = np.zeros(g.shape, np.int8)
+    _place_on_force(tau, g, target, region, np.zeros_like(tau), 1.0, 1.0)
+    np.testing.assert_array_equal(tau[:, on_bound], res.traction[:, on_bound])
+    np.testing.assert_allclose(tau.sum(axis=(1, 2)), target, rtol=0, atol=1e-12 * g.sum())
+    assert np.all(np.hypot(*tau) <= g * (1 + 1e-12))
+
+
+def test_previous_region_changes_the_start_not_the_solution(scene):
+    """A step whose bound grew under the slip ring (pressure x 1.01, the force kept): with previous_region the
+    slip elements start on the new bound instead of inside it. The step is a strictly convex program (A is
+    positive definite), so both starts must reach the same traction and shift to the solver tolerance (1e-8
+    of a_self max g, i.e. ~1e-7 relative after the conditioning of A), with Coulomb's law intact."""
+    first = scene.cattaneo(0.5)
+    g = 1.01 * scene.bound
+    F = (0.5 * MU * FN, 0.0)
+    plain = solve_tangential(scene.op, g, scene.zero, force=F, initial=first.traction)
+    kept = solve_tangential(scene.op, g, scene.zero, force=F, initial=first.traction,
+                            previous_region=first.region)
+    check_invariants(kept, g, scene.grid, force=F)
+    np.testing.assert_allclose(kept.traction, plain.traction, rtol=0, atol=1e-6 * g.max())
+    np.testing.assert_allclose(kept.shift_increment, plain.shift_increment, rtol=0,
+                               atol=1e-6 * abs(plain.shift_increment[0]))
+    with pytest.raises(InputError, match="previous_region"):
+        solve_tangential(scene.op, g, scene.zero, force=F, previous_region=first.region[:-1])
