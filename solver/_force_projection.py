@@ -12,20 +12,26 @@ from bem.errors import ConvergenceError
 from ._tangential_kernels import _jit, _mag
 
 
+_NO_RING = np.zeros((1, 1), np.int8)
+
+
 def project_discs(tau, g):
     """tau <- radial projection onto |tau_I| <= g_I; zero where g = 0 (in place)."""
-    force_projection_eval(tau, g, 0.0, 0.0, tau)  # element by element, so in place is safe
+    force_projection_eval(tau, g, 0.0, 0.0, tau, _NO_RING)  # element by element, so in place is safe
 
 
 @_jit
-def force_projection_eval(y, g, lx, ly, tau_out):
-    """tau_out = proj_discs(y + lambda); returns (sum tau_x, sum tau_y, J_xx, J_xy, J_yy, psi).
+def force_projection_eval(y, g, lx, ly, tau_out, region):
+    """tau_out = proj(y + lambda); returns (sum tau_x, sum tau_y, J_xx, J_xy, J_yy, psi).
 
-    psi = sum_I h(y_I + lambda) with h(z) = |z|^2/2 - dist(z, disc)^2/2 (a convex C^1 function whose
-    gradient is the projection) and J = sum of the projection Jacobians (theory §5: used to put the
-    starting traction on the force constraint, Euclidean projection onto discs & force).
+    proj is the radial projection onto the disc |tau_I| <= g_I, or, where region (int8, same shape as g;
+    a (1, 1) array for none) is 2, onto its rim |tau_I| = g_I (slip elements stay on their bound).
+    psi = sum_I h(y_I + lambda) with h(z) = |z|^2/2 - dist(z, disc)^2/2 (disc) or g|z| (rim), convex
+    functions whose gradients are the projections, and J = sum of the projection Jacobians (theory §5:
+    used to put the traction on the force constraint).
     """
     ny, nx = g.shape
+    ring = region.shape[0] == ny and region.shape[1] == nx
     sx = 0.0
     sy = 0.0
     jxx = 0.0
@@ -42,7 +48,8 @@ def force_projection_eval(y, g, lx, ly, tau_out):
             zx = y[0, j, i] + lx
             zy = y[1, j, i] + ly
             m = _mag(zx, zy)
-            if m <= gi:
+            on_rim = ring and region[j, i] == 2 and m > 0.0
+            if m <= gi and not on_rim:
                 tau_out[0, j, i] = zx
                 tau_out[1, j, i] = zy
                 sx += zx
@@ -61,24 +68,28 @@ def force_projection_eval(y, g, lx, ly, tau_out):
                 jxx += f * (1.0 - nxv * nxv)
                 jxy += -f * nxv * nyv
                 jyy += f * (1.0 - nyv * nyv)
-                psi += 0.5 * m * m - 0.5 * (m - gi) ** 2
+                psi += gi * m if on_rim else 0.5 * m * m - 0.5 * (m - gi) ** 2
     return sx, sy, jxx, jxy, jyy, psi
 
 
-def project_on_force(y, g, f, tau_out):
+def project_on_force(y, g, f, tau_out, region=None):
     """tau_out = Euclidean projection of y onto {|tau_I| <= g_I} intersected with {sum tau = f}.
 
-    The projection is proj_discs(y + lambda) with lambda (MPa) the root of the monotone 2-D map
-    S(lambda) = sum proj_discs(y + lambda) = f (the gradient of a convex dual function), found by a damped
-    Newton iteration on |S - f|. f = F/dA in MPa; requires |f| < sum g.
+    The projection is proj(y + lambda) with lambda (MPa) the root of the monotone 2-D map
+    S(lambda) = sum proj(y + lambda) = f (the gradient of a convex dual function), found by a damped
+    Newton iteration on |S - f|. f = F/dA in MPa; requires |f| < sum g. With `region` (int8, 2 = slip)
+    the slip elements are projected onto their rim |tau_I| = g_I instead of the disc: they stay in slip
+    and the force is met by turning them (and shifting the others). Without it a shift that shortens
+    the slip tractions moves them all inside their discs, i.e. into stick.
     """
+    region = _NO_RING if region is None else region
     cap = float(np.sum(g))
     tol = 1e-13 * cap
     fx, fy = f
     n_contact = max(int(np.count_nonzero(g > 0)), 1)
-    sy0 = force_projection_eval(y, g, 0.0, 0.0, tau_out)
+    sy0 = force_projection_eval(y, g, 0.0, 0.0, tau_out, region)
     lx, ly = (fx - sy0[0]) / n_contact, (fy - sy0[1]) / n_contact  # exact if nothing saturates
-    sx, sy, jxx, jxy, jyy, _ = force_projection_eval(y, g, lx, ly, tau_out)
+    sx, sy, jxx, jxy, jyy, _ = force_projection_eval(y, g, lx, ly, tau_out, region)
     err = math.hypot(sx - fx, sy - fy)
     for _ in range(200):
         if err <= tol:
@@ -91,7 +102,7 @@ def project_on_force(y, g, f, tau_out):
         dy = -(-b * rx + a * ry) / det
         t = 1.0
         for _ in range(80):
-            nsx, nsy, njxx, njxy, njyy, _ = force_projection_eval(y, g, lx + t * dx, ly + t * dy, tau_out)
+            nsx, nsy, njxx, njxy, njyy, _ = force_projection_eval(y, g, lx + t * dx, ly + t * dy, tau_out, region)
             nerr = math.hypot(nsx - fx, nsy - fy)
             if nerr < (1.0 - 1e-4 * t) * err:
                 break
@@ -100,7 +111,7 @@ def project_on_force(y, g, f, tau_out):
             break
         lx, ly = lx + t * dx, ly + t * dy
         sx, sy, jxx, jxy, jyy, err = nsx, nsy, njxx, njxy, njyy, nerr
-    sx, sy, *_ = force_projection_eval(y, g, lx, ly, tau_out)
+    sx, sy, *_ = force_projection_eval(y, g, lx, ly, tau_out, region)
     err = math.hypot(sx - fx, sy - fy)
     if err > 1e-10 * cap:
         raise ConvergenceError("could not place the starting traction on the force constraint",

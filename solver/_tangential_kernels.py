@@ -138,11 +138,12 @@ def release(nrm, region, w, dux, duy, tol_abs):
 
 
 @_jit
-def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
+def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z, kd=0.0):
     """Projected residual res = -P s (stick: -s; slip: -t (t.s)), curvature kappa = -s.n/g in slip.
 
     Also writes the slip of the step (s in slip elements, 0 in stick and exterior) and z = Q res, the
-    first factor of the preconditioner (see `_q_slip`). Returns (max |res_I| over stick and slip,
+    first factor of the preconditioner (see `_q_slip`; zero in slip elements that `_kappa_dominated` with
+    kd > 0 leaves out of the circulant inverse, see `finish_preconditioner`). Returns (max |res_I| over stick and slip,
     max positive s.n over slip, res.res).
     """
     ny, nx = g.shape
@@ -180,7 +181,11 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
                 res[0, j, i] = nyv * ts
                 res[1, j, i] = -nxv * ts
                 kappa[j, i] = max(-sn, 0.0) / g[j, i]
-                z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, res[0, j, i], res[1, j, i])
+                if kd > 0.0 and _kappa_dominated(nrm, kappa, axx, ayy, j, i, kd):
+                    z[0, j, i] = 0.0
+                    z[1, j, i] = 0.0
+                else:
+                    z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, res[0, j, i], res[1, j, i])
                 slip[0, j, i] = sx
                 slip[1, j, i] = sy
                 a = abs(ts)
@@ -207,8 +212,16 @@ def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
     return tx * ft, ty * ft
 
 
+@nb.njit(cache=True, inline="always")
+def _kappa_dominated(nrm, kappa, axx, ayy, j, i, kd):
+    """Slip element (j, i) whose curvature kappa exceeds kd times its tangential self coefficient a_tt."""
+    tx = -nrm[1, j, i]
+    ty = nrm[0, j, i]
+    return kappa[j, i] > kd * (axx * tx * tx + ayy * ty * ty)
+
+
 @_jit
-def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy, q_prev):
+def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy, q_prev, kd=0.0):
     """z <- D Q z (Q as in `_q_slip`; D removes the part that changes the total force).
 
     Returns (res.z, z.q_prev): the preconditioned residual norm and the numerator of the conjugation
@@ -216,7 +229,9 @@ def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gx
 
     D z = z - C G^-1 C^T z with C = [P e_x, P e_y] (the force-constraint vectors restricted to the free
     directions) and G = C^T C (from `gram_and_fit`); applied only if deflate (prescribed force).
-    Two passes: Q with the sums C^T z, then D with the product res.z.
+    Two passes: Q with the sums C^T z, then D with the product res.z. In the slip elements that are
+    `_kappa_dominated` (kd > 0) Q M Q is replaced by the diagonal t t^T / (a_tt + kappa) applied to res:
+    the preconditioner is then block diagonal between those elements and the rest, and stays symmetric.
     """
     ny, nx = region.shape
     cx = 0.0
@@ -229,7 +244,15 @@ def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gx
                 z[1, j, i] = 0.0
                 continue
             if r == 2:
-                z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i])
+                if kd > 0.0 and _kappa_dominated(nrm, kappa, axx, ayy, j, i, kd):
+                    tx = -nrm[1, j, i]
+                    ty = nrm[0, j, i]
+                    att = axx * tx * tx + ayy * ty * ty
+                    ft = (tx * res[0, j, i] + ty * res[1, j, i]) / (att + kappa[j, i])
+                    z[0, j, i] = tx * ft
+                    z[1, j, i] = ty * ft
+                else:
+                    z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i])
             cx += z[0, j, i]
             cy += z[1, j, i]
     det = gxx * gyy - gxy * gxy

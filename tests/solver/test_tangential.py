@@ -262,3 +262,23 @@ def test_previous_region_changes_the_start_not_the_solution(scene):
                                atol=1e-6 * abs(plain.shift_increment[0]))
     with pytest.raises(InputError, match="previous_region"):
         solve_tangential(scene.op, g, scene.zero, force=F, previous_region=first.region[:-1])
+
+
+def test_force_projection_on_rims_keeps_slip_elements_on_their_bound(scene):
+    """project_on_force with the region turns the slip tractions along their rims |tau| = g instead of pulling
+    them inside (where they would count as stick): every slip element stays on its bound to round-off, the
+    others stay in their discs, and the sum meets the force to the projection's tolerance (1e-10 sum g)."""
+    from solver import _force_projection as FP
+    res = scene.cattaneo(0.9)
+    g, region = scene.bound, res.region
+    assert (region == 2).sum() > 3 * (region == 1).sum()  # f_t = 0.9: a wide slip ring
+    target = res.traction.sum(axis=(1, 2)) * np.array([0.97, 1.0]) + np.array([0.0, 0.05 * g.sum()])
+    out = np.empty_like(res.traction)
+    FP.project_on_force(res.traction, g, target, out, region)
+    slip = region == 2
+    np.testing.assert_allclose(np.hypot(*out)[slip], g[slip], rtol=1e-12)
+    assert np.all(np.hypot(*out) <= g * (1 + 1e-12))
+    np.testing.assert_allclose(out.sum(axis=(1, 2)), target, rtol=0, atol=1e-10 * g.sum())
+    plain = np.empty_like(out)
+    FP.project_on_force(res.traction, g, target, plain)  # the Euclidean projection pulls the ring inside
+    assert np.count_nonzero(np.hypot(*plain)[slip] < g[slip] * (1 - 1e-9)) > 0.5 * slip.sum()
