@@ -14,6 +14,8 @@ are exact ("Johnson's process") and no coupling product is formed.
 
 Units: mm, N, MPa. Signs as in theory.md §0.
 """
+from dataclasses import replace
+
 import numpy as np
 
 from bem.errors import ConvergenceError, InputError
@@ -42,7 +44,9 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     pressure_guess : (ny, nx) warm start of the normal solve (MPa), e.g. the previous pressure moved with
         the sphere (`shifted_field`); default the previous pressure. Only the start changes, not the solution.
 
-    Returns (NormalResult, TangentialResult, outer_iterations).
+    Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
+    with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
+    iteration alone often needs one product each, since it starts from the converged fields).
     """
     if not (mu > 0):
         raise InputError(f"mu = {mu!r}: the friction coefficient must be > 0")
@@ -64,6 +68,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     p = p_prev.copy()
     p_guess = initial_p
     change = np.inf
+    n_products = t_products = 0
     for outer in range(1, max_outer + 1):
         normal = solve_normal(op, profile, force=Fn, initial=p_guess,
                               extra_displacement=op.normal_from_tangential(tau[0], tau[1]),
@@ -72,13 +77,15 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, initial=tau, extra_slip=extra,
                                 previous_region=None if outer == 1 else tang.region,
                                 params=tangential_params)
+        n_products += normal.iterations
+        t_products += tang.iterations
         pmax = float(normal.pressure.max())
         dp = float(np.abs(normal.pressure - p).max()) / pmax
         dt = float(np.abs(tang.traction - tau).max()) / (mu * pmax)
         change = max(dp, dt)
         p, tau, p_guess = normal.pressure, tang.traction, normal.pressure
         if outer > 1 and change <= coupling_tol:
-            return normal, tang, outer
+            return replace(normal, iterations=n_products), replace(tang, iterations=t_products), outer
     raise ConvergenceError("Panagiotopoulos loop (coupled normal/tangential) did not converge",
                            solver="coupled", iterations=max_outer, residual=change, tol=coupling_tol,
                            regime=f"beta = {op.materials.beta:.4g}, mu = {mu}, "

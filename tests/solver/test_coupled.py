@@ -71,3 +71,30 @@ def test_uncoupled_materials_cost_exactly_one_normal_solve(monkeypatch):
                                              np.zeros((2,) + grid.shape), mu=MU)
     assert outer == 1 and calls == {"normal": 1, "tangential": 1}
     assert tang.shift_increment[0] > 0
+
+
+def test_coupled_step_reports_the_products_of_every_outer_iteration(monkeypatch):
+    """The iterations of the returned results are the products of the whole step (all outer iterations), not
+    those of the last outer iteration, which starts from the converged fields and needs about one each."""
+    mats = MaterialPair.from_moduli(210e3, 0.3, 70e3, 0.33)
+    grid, op, h = _setup(mats)
+    seen = {"normal": [], "tangential": []}
+    real_n, real_t = coupled.solve_normal, coupled.solve_tangential
+
+    def count_n(*a, **k):
+        r = real_n(*a, **k)
+        seen["normal"].append(r.iterations)
+        return r
+
+    def count_t(*a, **k):
+        r = real_t(*a, **k)
+        seen["tangential"].append(r.iterations)
+        return r
+
+    monkeypatch.setattr(coupled, "solve_normal", count_n)
+    monkeypatch.setattr(coupled, "solve_tangential", count_t)
+    normal, tang, outer = solve_coupled_step(op, h, FN, (0.5 * MU * FN, 0.0), None,
+                                             np.zeros((2,) + grid.shape), mu=MU)
+    assert outer == len(seen["normal"]) == len(seen["tangential"]) >= 2
+    assert normal.iterations == sum(seen["normal"]) > seen["normal"][-1]
+    assert tang.iterations == sum(seen["tangential"]) > seen["tangential"][-1]
