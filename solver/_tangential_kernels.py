@@ -143,13 +143,16 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z, kd=0.0)
 
     Also writes the slip of the step (s in slip elements, 0 in stick and exterior) and z = Q res, the
     first factor of the preconditioner (see `_q_slip`; zero in slip elements that `_kappa_dominated` with
-    kd > 0 leaves out of the circulant inverse, see `finish_preconditioner`). Returns (max |res_I| over stick and slip,
-    max positive s.n over slip, res.res).
+    kd > 0 leaves out of the circulant inverse, see `finish_preconditioner`). Returns (max |res_I| over stick
+    and slip, max positive s.n over slip, stopping residual): the stopping residual is the largest slip error
+    expressed through the element's own stiffness, in mm of a_tt: |s| in stick, |t.s| a_tt/(a_tt + kappa)
+    in slip, where turning the traction is resisted by a_tt + kappa (kappa = |s.n|/g), so that it is a_tt
+    times the traction change that would remove the error of that element alone.
     """
     ny, nx = g.shape
     rmax = 0.0
     snmax = 0.0
-    rr = 0.0
+    rstop = 0.0
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
@@ -191,10 +194,15 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z, kd=0.0)
                 a = abs(ts)
                 if sn > snmax:
                     snmax = sn
+                att = axx * nyv * nyv + ayy * nxv * nxv
+                b = a * att / (att + kappa[j, i])
+                if b > rstop:
+                    rstop = b
             if a > rmax:
                 rmax = a
-            rr += res[0, j, i] ** 2 + res[1, j, i] ** 2
-    return rmax, snmax, rr
+            if r == 1 and a > rstop:
+                rstop = a
+    return rmax, snmax, rstop
 
 
 @nb.njit(cache=True, inline="always")
