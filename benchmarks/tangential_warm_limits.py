@@ -2,7 +2,7 @@
 
 Issue #3 asks for <= 15 iterations per step warm-started after a small load or profile change and for
 nearly flat cold counts under refinement. On the Cattaneo scene of `tangential_cattaneo.py` (seed scene,
-grid = contact + 0.6 mm, dx = 0.2 / 0.1 / 0.05 mm, tol = 1e-8) this separates the linear algebra from the
+grid = contact + 0.6 mm, dx = 0.2 / 0.1 / 0.05 / 0.0211 mm, tol = 1e-8) this separates the linear algebra from the
 identification of the stick/slip division:
 
 * floor: with the final division of the solve known in advance and the slip tractions fixed at their final
@@ -13,7 +13,7 @@ identification of the stick/slip division:
   one per iteration plus the start product.
 * `solve_tangential` on the same steps, all products counted (`TangentialResult.iterations`).
 
-Usage: .venv/bin/python benchmarks/tangential_warm_limits.py [--dx 0.2 0.1 0.05]
+Usage: .venv/bin/python benchmarks/tangential_warm_limits.py [--dx 0.2 0.1 0.05 0.0211]
 Writes benchmarks/results/tangential_warm_limits.json and prints a Markdown table.
 """
 import argparse
@@ -99,7 +99,7 @@ def markdown(rows):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1, 0.05])
+    parser.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1, 0.05, 0.0211])
     parser.add_argument("--output", default=str(ROOT / "benchmarks" / "results" / "tangential_warm_limits.json"))
     args = parser.parse_args(argv)
     params = TangentialParams()

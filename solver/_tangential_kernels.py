@@ -123,6 +123,37 @@ def gram_and_fit(nrm, region, w):
 
 
 @_jit
+def flip_reversed(tau, nrm, g, region, w, dux, duy, u, axx, ayy, big):
+    """Slip elements whose slip points along the traction (s.n > 0) and is large, |s| > big g (big in mm/MPa):
+    their traction is turned to oppose the slip, tau = -g s/|s|, and they stay in slip; nrm, u and w are
+    updated there (u, w by the self coefficients). Returns the number of elements turned."""
+    ny, nx = region.shape
+    n = 0
+    for j in range(ny):
+        for i in range(nx):
+            if region[j, i] == 2:
+                sx = w[0, j, i] - dux
+                sy = w[1, j, i] - duy
+                sn = sx * nrm[0, j, i] + sy * nrm[1, j, i]
+                m = _mag(sx, sy)
+                if sn > 0.0 and m > big * g[j, i]:
+                    tx = -g[j, i] * sx / m
+                    ty = -g[j, i] * sy / m
+                    dx = tx - tau[0, j, i]
+                    dy = ty - tau[1, j, i]
+                    tau[0, j, i] = tx
+                    tau[1, j, i] = ty
+                    nrm[0, j, i] = tx / g[j, i]
+                    nrm[1, j, i] = ty / g[j, i]
+                    u[0, j, i] += axx * dx
+                    u[1, j, i] += ayy * dy
+                    w[0, j, i] += axx * dx
+                    w[1, j, i] += ayy * dy
+                    n += 1
+    return n
+
+
+@_jit
 def release(nrm, region, w, dux, duy, tol_abs):
     """Slip elements whose slip points along the traction (s.n > tol_abs) return to stick."""
     ny, nx = region.shape

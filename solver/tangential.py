@@ -40,7 +40,9 @@ nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, 
 
 After each CG step, stick elements that leave their disc are projected radially onto it and become slip
 (many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
-traction (s.n > 0) are released to stick, slip elements are renormalised to |tau| = g, and the force
+traction (s.n > 0) are released to stick (or, when that slip exceeds 2 a_self g, more than the element's
+own traction can undo over its whole range, their traction is turned against the slip and they stay in
+slip: released, their stick residual would be far outside the disc), slip elements are renormalised to |tau| = g, and the force
 is restored by a uniform shift of the stick tractions; the CG recurrence restarts after any change of
 the division. The projected gradient method (theory §5.5) is simpler but needs thousands of products on
 these problems; Gauss-Seidel (§5.3) is sequential and grows with the grid.
@@ -105,6 +107,9 @@ _MAX_TURN = 0.5
 #: are preconditioned by their own diagonal 1/(a_tt + kappa) and kept out of the circulant inverse M (see
 #: `_tangential_kernels._kappa_dominated`).
 _KAPPA_DIAGONAL = 4.0
+#: A slip element whose slip points along its traction and exceeds _FLIP_SLIP a_self g is turned against its
+#: slip rather than released to stick (`_tangential_kernels.flip_reversed`).
+_FLIP_SLIP = 2.0
 
 #: the last two converged tractions and their displacements A^tt tau, per operator (see solver._memo)
 _memo = ProductMemo(size=2)
@@ -329,6 +334,22 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             # on a poor multiplier estimate makes the division cycle near the traction bound.
             if snmax <= tol * scale or rmax > release_ratio * snmax:
                 break
+            # A slip element whose slip points along its traction and exceeds what its own traction can undo
+            # over its whole range (|s| > 2 a_self g) must keep slipping: turn its traction against the slip
+            # instead of releasing it (released, its stick residual -s would be far outside its disc and the
+            # step that clips it back wrecked the iterate: f_t = 0.75 and 0.9 failed at 511^2).
+            n_flip = K.flip_reversed(tau, nrm, g, region, w, dU[0], dU[1], u, axx, ayy, _FLIP_SLIP * a_self)
+            if n_flip:
+                synced = False
+                if force_mode and K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol,
+                                                  float(tau[0].sum()), float(tau[1].sum()),
+                                                  int(np.count_nonzero(region == 1))):
+                    FP.project_on_force(tau.copy(), g, f_cells, tau, region)
+                    matvec(tau, u)
+                    synced = True
+                # the force restoration may have pushed stick elements onto their rims: division, directions
+                # and w afresh (the shift fit of the next round is recomputed from them)
+                K.classify(tau, g, region, nrm, u, u_prev, e_arr, e is not None, w)
             released += K.release(nrm, region, w, dU[0], dU[1], 0.0)
             restart = True
         residual_rel = max(rstop, snmax) / scale

@@ -295,3 +295,26 @@ def test_stopping_tolerance_bounds_the_traction_error(scene, tol):
     res = solve_tangential(scene.op, scene.bound, scene.zero, force=F, params=TangentialParams(tol=tol))
     assert np.abs(res.traction - ref.traction).max() < 3 * tol * scene.bound.max()
     assert abs(res.shift_increment[0] / ref.shift_increment[0] - 1) < tol
+
+
+def test_flip_reversed_turns_only_large_reversed_slips():
+    """`flip_reversed` turns a slip traction against its slip when the slip points along the traction and is
+    larger than big g; smaller reversed slips (left to the release rule) and stick elements are untouched, and
+    u, w change by the self coefficients times the traction change."""
+    from solver import _tangential_kernels as K
+    g = np.array([[1.0, 1.0, 2.0]])
+    region = np.array([[2, 2, 1]], np.int8)
+    tau = np.array([[[1.0, 0.0, 0.5]], [[0.0, 1.0, 0.0]]])
+    nrm = tau / g
+    w = np.array([[[3.0, 0.0, 5.0]], [[0.5, 0.01, 5.0]]])  # element 0: s.n = 3 > 0, |s| = 3.04 > 2 g
+    u, w0 = np.zeros_like(w), w.copy()
+    n = K.flip_reversed(tau, nrm, g, region, w, 0.0, 0.0, u, 0.3, 0.4, 2.0)
+    assert n == 1
+    s0 = w0[:, 0, 0]
+    np.testing.assert_allclose(tau[:, 0, 0], -g[0, 0] * s0 / np.hypot(*s0))
+    np.testing.assert_allclose(np.hypot(*tau[:, 0, 0]), g[0, 0])
+    np.testing.assert_array_equal(tau[:, 0, 1:], np.array([[0.0, 0.5], [1.0, 0.0]]))  # small slip, stick
+    d = tau[:, 0, 0] - np.array([1.0, 0.0])
+    np.testing.assert_allclose(u[:, 0, 0], [0.3 * d[0], 0.4 * d[1]])
+    np.testing.assert_allclose(w[:, 0, 0] - w0[:, 0, 0], u[:, 0, 0])
+    assert not np.any(u[:, 0, 1:])
