@@ -169,12 +169,11 @@ def release(nrm, region, w, dux, duy, tol_abs):
 
 
 @_jit
-def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z, kd=0.0):
+def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
     """Projected residual res = -P s (stick: -s; slip: -t (t.s)), curvature kappa = -s.n/g in slip.
 
     Also writes the slip of the step (s in slip elements, 0 in stick and exterior) and z = Q res, the
-    first factor of the preconditioner (see `_q_slip`; zero in slip elements that `_kappa_dominated` with
-    kd > 0 leaves out of the circulant inverse, see `finish_preconditioner`). Returns (max |res_I| over stick
+    first factor of the preconditioner (see `_q_slip`). Returns (max |res_I| over stick
     and slip, max positive s.n over slip, stopping residual): the stopping residual is the largest slip error
     expressed through the element's own stiffness, in mm of a_tt: |s| in stick, |t.s| a_tt/(a_tt + kappa)
     in slip, where turning the traction is resisted by a_tt + kappa (kappa = |s.n|/g), so that it is a_tt
@@ -215,11 +214,7 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z, kd=0.0)
                 res[0, j, i] = nyv * ts
                 res[1, j, i] = -nxv * ts
                 kappa[j, i] = max(-sn, 0.0) / g[j, i]
-                if kd > 0.0 and _kappa_dominated(nrm, kappa, axx, ayy, j, i, kd):
-                    z[0, j, i] = 0.0
-                    z[1, j, i] = 0.0
-                else:
-                    z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, res[0, j, i], res[1, j, i])
+                z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, res[0, j, i], res[1, j, i])
                 slip[0, j, i] = sx
                 slip[1, j, i] = sy
                 a = abs(ts)
@@ -238,39 +233,34 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z, kd=0.0)
 
 @nb.njit(cache=True, inline="always")
 def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
-    """Q (x, y) in a slip element: sqrt(a_tt/(a_tt + kappa)) t (t.(x, y)); returns the two components.
+    """Q (x, y) in a slip element: a_tt/(a_tt + kappa) t (t.(x, y)); returns the two components.
 
-    Q = 1 in stick, sqrt(a_tt/(a_tt + kappa)) t t^T in slip and 0 outside; applied on both sides of the
-    circulant inverse M, z = Q P M P Q r is a symmetric positive semi-definite preconditioner of the
-    linearised operator P (A + kappa) P (a_tt = t^T diag(a_xx, a_yy) t, the self coefficient along t).
+    Q = 1 in stick, a_tt/(a_tt + kappa) t t^T in slip and 0 outside (a_tt = t^T diag(a_xx, a_yy) t, the self
+    coefficient along t). The preconditioner of the linearised operator P (A + kappa) P is
+    z = Q P M P Q r + D r, with M the circulant inverse and D = kappa/(a_tt + kappa)^2 t t^T in slip
+    (`finish_preconditioner`): its diagonal is 1/(a_tt + kappa) (M_II ~ 1/a_tt), the inverse of the element's
+    own stiffness for turning its traction, and the coupling of a slip element to the others fades like
+    a_tt/(a_tt + kappa), so that elements whose curvature dominates (slip far larger than their own traction
+    can change: the contact edge, where g -> 0, and most of the slip area near full sliding) are moved by
+    their own residual and not by their neighbours'. Symmetric positive definite (Q > 0, D >= 0).
     """
     tx = -nrm[1, j, i]
     ty = nrm[0, j, i]
     att = axx * tx * tx + ayy * ty * ty
-    ft = math.sqrt(att / (att + kappa[j, i])) * (tx * x + ty * y)
+    ft = att / (att + kappa[j, i]) * (tx * x + ty * y)
     return tx * ft, ty * ft
 
 
-@nb.njit(cache=True, inline="always")
-def _kappa_dominated(nrm, kappa, axx, ayy, j, i, kd):
-    """Slip element (j, i) whose curvature kappa exceeds kd times its tangential self coefficient a_tt."""
-    tx = -nrm[1, j, i]
-    ty = nrm[0, j, i]
-    return kappa[j, i] > kd * (axx * tx * tx + ayy * ty * ty)
-
-
 @_jit
-def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy, q_prev, kd=0.0):
-    """z <- D Q z (Q as in `_q_slip`; D removes the part that changes the total force).
+def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy, q_prev):
+    """z <- Pi (Q z + D res) (Q, D as in `_q_slip`; Pi removes the part that changes the total force).
 
     Returns (res.z, z.q_prev): the preconditioned residual norm and the numerator of the conjugation
     coefficient (see `conjugate`).
 
-    D z = z - C G^-1 C^T z with C = [P e_x, P e_y] (the force-constraint vectors restricted to the free
+    Pi z = z - C G^-1 C^T z with C = [P e_x, P e_y] (the force-constraint vectors restricted to the free
     directions) and G = C^T C (from `gram_and_fit`); applied only if deflate (prescribed force).
-    Two passes: Q with the sums C^T z, then D with the product res.z. In the slip elements that are
-    `_kappa_dominated` (kd > 0) Q M Q is replaced by the diagonal t t^T / (a_tt + kappa) applied to res:
-    the preconditioner is then block diagonal between those elements and the rest, and stays symmetric.
+    Two passes: Q and D with the sums C^T z, then Pi with the product res.z.
     """
     ny, nx = region.shape
     cx = 0.0
@@ -283,15 +273,14 @@ def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gx
                 z[1, j, i] = 0.0
                 continue
             if r == 2:
-                if kd > 0.0 and _kappa_dominated(nrm, kappa, axx, ayy, j, i, kd):
-                    tx = -nrm[1, j, i]
-                    ty = nrm[0, j, i]
-                    att = axx * tx * tx + ayy * ty * ty
-                    ft = (tx * res[0, j, i] + ty * res[1, j, i]) / (att + kappa[j, i])
-                    z[0, j, i] = tx * ft
-                    z[1, j, i] = ty * ft
-                else:
-                    z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i])
+                qx, qy = _q_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i])
+                tx = -nrm[1, j, i]
+                ty = nrm[0, j, i]
+                att = axx * tx * tx + ayy * ty * ty
+                kk = kappa[j, i]
+                ft = (tx * res[0, j, i] + ty * res[1, j, i]) * kk / ((att + kk) * (att + kk))
+                z[0, j, i] = qx + tx * ft
+                z[1, j, i] = qy + ty * ft
             cx += z[0, j, i]
             cy += z[1, j, i]
     det = gxx * gyy - gxy * gxy

@@ -26,17 +26,19 @@ nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, 
   sum v = 0 in the free directions; dU is recovered in closed form as the least-squares multiplier
   (stick slip and tangential slip orthogonal to the constraint vectors). There is no outer Newton loop on
   dU and no bracketing, so there is nothing to degrade near the traction bound (P12).
-* A symmetric preconditioner z = Q P M P Q r with M the Strang-circulant inverse of the 2x2-block
-  operator (`op.tangential_inverse`) on the unpadded grid and Q = sqrt(a/(a + kappa)) on the slip
-  tangents. It is a good approximate inverse of A in the stick area and on the slip ring alike, which is
-  what keeps the iteration count nearly flat under grid refinement. Except where the curvature dominates:
-  a slip element with kappa > _KAPPA_DIAGONAL a_tt (slip far larger than what its own traction can
-  change: the contact edge, where g -> 0, and most of the slip area near full sliding) is preconditioned
-  by its own diagonal 1/(a_tt + kappa) and kept out of M. Inside M it would be moved mostly by its
-  neighbours' residuals (their weight relative to its own grows like sqrt(kappa/a_tt)): edge elements then
-  turned back and forth by the trust-region limit for tens of iterations while their residual, not
-  weighted by g, held the stopping test (cold Cattaneo 95 -> 45 products at dx = 0.05, f_t = 0.99
-  220 -> 63; the block-diagonal split keeps the preconditioner symmetric positive definite).
+* A symmetric preconditioner z = Q P M P Q r + D r with M the Strang-circulant inverse of the 2x2-block
+  operator (`op.tangential_inverse`) on the unpadded grid, Q = a_tt/(a_tt + kappa) and
+  D = kappa/(a_tt + kappa)^2 on the slip tangents (`_tangential_kernels._q_slip`). It is a good approximate
+  inverse of A in the stick area and on the slip ring alike, which is what keeps the iteration count
+  nearly flat under grid refinement, and its diagonal in a slip element is 1/(a_tt + kappa), the inverse
+  of the element's own stiffness for turning its traction, while its coupling to the other elements fades
+  like a_tt/(a_tt + kappa). With the earlier Q = sqrt(a_tt/(a_tt + kappa)) and no D, an element whose
+  curvature dominates (slip far larger than its own traction can change: the contact edge, where g -> 0,
+  and most of the slip area near full sliding) was moved by its neighbours' residuals, with a weight
+  relative to its own growing like sqrt(kappa/a_tt): edge elements turned back and forth by the
+  trust-region limit for tens of iterations (cold Cattaneo 32 / 50 / 95 -> 22 / 27 / 37 products at
+  dx = 0.2 / 0.1 / 0.05, f_t = 0.99 at dx = 0.05 220 -> 41, and the cold solve at 511^2 converges,
+  where it failed after 500 products).
 
 After each CG step, stick elements that leave their disc are projected radially onto it and become slip
 (many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
@@ -103,10 +105,6 @@ from . import _tangential_kernels as K
 CAPACITY_MARGIN = 1e-9
 #: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
 _MAX_TURN = 0.5
-#: Slip elements whose curvature kappa = |s.n|/g exceeds _KAPPA_DIAGONAL times their tangential self coefficient
-#: are preconditioned by their own diagonal 1/(a_tt + kappa) and kept out of the circulant inverse M (see
-#: `_tangential_kernels._kappa_dominated`).
-_KAPPA_DIAGONAL = 4.0
 #: A slip element whose slip points along its traction and exceeds _FLIP_SLIP a_self g is turned against its
 #: slip rather than released to stick (`_tangential_kernels.flip_reversed`).
 _FLIP_SLIP = 2.0
@@ -328,7 +326,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
                     tr = gxx + gyy
                     dU[0], dU[1] = bx / tr, by / tr
-            rmax, snmax, rstop = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip, axx, ayy, z, _KAPPA_DIAGONAL)
+            rmax, snmax, rstop = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip, axx, ayy, z)
             # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
             # back inside) only once the current face is solved better than that violation: releasing
             # on a poor multiplier estimate makes the division cycle near the traction bound.
@@ -405,7 +403,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         # preconditioned, deflated residual: z = Pi Q P M P Q r
         # z = Q res was written by K.residual
         op.tangential_inverse(z[0], z[1], out=z)
-        rz, zq = K.finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, force_mode, gxx, gxy, gyy, q, _KAPPA_DIAGONAL)
+        rz, zq = K.finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, force_mode, gxx, gxy, gyy, q)
         if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
             z[...] = res
             rz, zq = K.finish_preconditioner(nrm, region, np.zeros_like(kappa), axx, ayy, z, res, force_mode,
