@@ -73,7 +73,8 @@ def force_projection_eval(y, g, lx, ly, tau_out, region):
 
 
 def project_on_force(y, g, f, tau_out, region=None):
-    """tau_out = Euclidean projection of y onto {|tau_I| <= g_I} intersected with {sum tau = f}.
+    """tau_out = Euclidean projection of y onto {|tau_I| <= g_I} intersected with {sum tau = f} (without
+    `region`), or onto the same set with the slip elements held on their rims (with it).
 
     The projection is proj(y + lambda) with lambda (MPa) the root of the monotone 2-D map
     S(lambda) = sum proj(y + lambda) = f (the gradient of a convex dual function), found by a damped
@@ -82,7 +83,10 @@ def project_on_force(y, g, f, tau_out, region=None):
     and the force is met by turning them (and shifting the others). Without it a shift that shortens
     the slip tractions moves them all inside their discs, i.e. into stick.
     """
-    region = _NO_RING if region is None else region
+    if region is None:
+        region = _NO_RING
+    elif region.shape != g.shape:
+        raise ValueError(f"project_on_force: region has shape {region.shape}, the bound {g.shape}")
     cap = float(np.sum(g))
     tol = 1e-13 * cap
     fx, fy = f

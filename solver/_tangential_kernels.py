@@ -176,7 +176,7 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
     first factor of the preconditioner (see `_q_slip`). Returns (max |res_I| over stick
     and slip, max positive s.n over slip, stopping residual): the stopping residual is the largest slip error
     expressed through the element's own stiffness, in mm of a_tt: |s| in stick, |t.s| a_tt/(a_tt + kappa)
-    in slip, where turning the traction is resisted by a_tt + kappa (kappa = |s.n|/g), so that it is a_tt
+    in slip, where turning the traction is resisted by a_tt + kappa (kappa = max(-s.n, 0)/g), so that it is a_tt
     times the traction change that would remove the error of that element alone.
     """
     ny, nx = g.shape
@@ -242,7 +242,9 @@ def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
     own stiffness for turning its traction, and the coupling of a slip element to the others fades like
     a_tt/(a_tt + kappa), so that elements whose curvature dominates (slip far larger than their own traction
     can change: the contact edge, where g -> 0, and most of the slip area near full sliding) are moved by
-    their own residual and not by their neighbours'. Symmetric positive definite (Q > 0, D >= 0).
+    their own residual and not by their neighbours'. Symmetric on the deflated space (where the solver applies
+    it) and positive definite as far as M is (Q > 0, D >= 0); the solver falls back to the plain residual
+    when r.z <= 0.
     """
     tx = -nrm[1, j, i]
     ty = nrm[0, j, i]

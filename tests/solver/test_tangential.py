@@ -257,6 +257,7 @@ def test_previous_region_changes_the_start_not_the_solution(scene):
     kept = solve_tangential(scene.op, g, scene.zero, force=F, initial=first.traction,
                             previous_region=first.region)
     check_invariants(kept, g, scene.grid, force=F)
+    assert kept.iterations < plain.iterations  # the point of it (measured 13 against 20 products)
     np.testing.assert_allclose(kept.traction, plain.traction, rtol=0, atol=1e-6 * g.max())
     np.testing.assert_allclose(kept.shift_increment, plain.shift_increment, rtol=0,
                                atol=1e-6 * abs(plain.shift_increment[0]))
@@ -319,3 +320,16 @@ def test_flip_reversed_turns_only_large_reversed_slips():
     np.testing.assert_allclose(u[:, 0, 0], [0.3 * d[0], 0.4 * d[1]])
     np.testing.assert_allclose(w[:, 0, 0] - w0[:, 0, 0], u[:, 0, 0])
     assert not np.any(u[:, 0, 1:])
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("f_t", [0.75, 0.9])
+def test_cold_solve_on_the_512_grid_converges(f_t):
+    """The issue's largest grid (511^2, dx = 0.0211 mm): these cold solves failed after 500 products until slip
+    elements with a large slip along their traction were turned against it instead of released (all elements
+    then ended in slip). Shift within 0.5 % of Mindlin (P10), Coulomb's law and the force balance intact."""
+    big = Scene(0.0211)
+    assert big.grid.shape == (511, 511)
+    res = big.cattaneo(f_t, params=TangentialParams(max_iter=150))
+    check_invariants(res, big.bound, big.grid, force=(f_t * MU * FN, 0.0))
+    assert abs(res.shift_increment[0] / MINDLIN.shift(f_t) - 1) < 5e-3
