@@ -220,7 +220,7 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
                 a = abs(ts)
                 if sn > snmax:
                     snmax = sn
-                att = axx * nyv * nyv + ayy * nxv * nxv
+                att = _a_tt(nrm, axx, ayy, j, i)
                 b = a * att / (att + kappa[j, i])
                 if b > rstop:
                     rstop = b
@@ -229,6 +229,12 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
             if r == 1 and a > rstop:
                 rstop = a
     return rmax, snmax, rstop
+
+
+@nb.njit(cache=True, inline="always")
+def _a_tt(nrm, axx, ayy, j, i):
+    """Self coefficient along the slip tangent t = (-n_y, n_x) of element (j, i): t^T diag(a_xx, a_yy) t."""
+    return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
 
 
 @nb.njit(cache=True, inline="always")
@@ -248,8 +254,19 @@ def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
     """
     tx = -nrm[1, j, i]
     ty = nrm[0, j, i]
-    att = axx * tx * tx + ayy * ty * ty
+    att = _a_tt(nrm, axx, ayy, j, i)
     ft = att / (att + kappa[j, i]) * (tx * x + ty * y)
+    return tx * ft, ty * ft
+
+
+@nb.njit(cache=True, inline="always")
+def _qd_slip(nrm, kappa, axx, ayy, j, i, x, y, rx, ry):
+    """Q (x, y) + D (rx, ry) in a slip element (Q, D as in `_q_slip`); returns the two components."""
+    tx = -nrm[1, j, i]
+    ty = nrm[0, j, i]
+    att = _a_tt(nrm, axx, ayy, j, i)
+    kk = kappa[j, i]
+    ft = att / (att + kk) * (tx * x + ty * y) + kk / ((att + kk) * (att + kk)) * (tx * rx + ty * ry)
     return tx * ft, ty * ft
 
 
@@ -275,14 +292,8 @@ def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gx
                 z[1, j, i] = 0.0
                 continue
             if r == 2:
-                qx, qy = _q_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i])
-                tx = -nrm[1, j, i]
-                ty = nrm[0, j, i]
-                att = axx * tx * tx + ayy * ty * ty
-                kk = kappa[j, i]
-                ft = (tx * res[0, j, i] + ty * res[1, j, i]) * kk / ((att + kk) * (att + kk))
-                z[0, j, i] = qx + tx * ft
-                z[1, j, i] = qy + ty * ft
+                z[0, j, i], z[1, j, i] = _qd_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i],
+                                                  res[0, j, i], res[1, j, i])
             cx += z[0, j, i]
             cy += z[1, j, i]
     det = gxx * gyy - gxy * gxy
