@@ -9,6 +9,7 @@ preallocated, so a product allocates only its output (or nothing, when `out=` is
 Fields are arrays of shape (ny, nx): pressure p and tractions tau_x, tau_y in MPa, displacements in mm
 (theory.md §0 conventions: u_z positive into the bodies, (u_x, u_y) substrate relative to sphere).
 """
+import math
 import os
 import pickle
 import threading
@@ -215,10 +216,10 @@ class HalfSpaceOperator:
         block = np.stack([np.stack([s["xx"], s["xy"]], -1), np.stack([s["xy"], s["yy"]], -1)], -2)
         lam, vec = np.linalg.eigh(block)
         lam = np.maximum(lam, PRECONDITIONER_FLOOR * lam.max())
-        inv = np.einsum("...ik,...k,...jk->...ij", vec, 1.0 / lam, vec)
+        self._tt_eigen = (lam, vec)  # for the shifted inverses (`tangential_inverse(shift=...)`)
+        self._shifted_inverses = {}
         scale = 1.0 / (sy * sx)  # c2r is unnormalised
-        symbols = {"zz": scale / zz, "xx": scale * inv[..., 0, 0], "yy": scale * inv[..., 1, 1],
-                   "xy": scale * inv[..., 0, 1]}
+        symbols = {"zz": scale / zz, **self._tangential_inverse_symbols(0.0)}
         self.inverse_spectra = {c: np.ascontiguousarray(v, dtype=np.float64) for c, v in symbols.items()}
         self._fft_small = _fft_pairs((1, 2), self.small, self.threads, planner)
 
@@ -300,9 +301,30 @@ class HalfSpaceOperator:
         return self._apply_symbols((residual,), self.inverse_spectra, self._fft_small,
                                    None if out is None else out[None])[0]
 
-    def tangential_inverse(self, res_x, res_y, out=None):
-        """Approximate inverse of the 2x2-block tangential operator (preconditioner), shape (2, ny, nx)."""
-        return self._apply_symbols((res_x, res_y), self.inverse_spectra, self._fft_small, out)
+    def tangential_inverse(self, res_x, res_y, out=None, shift=0.0):
+        """Approximate inverse of the 2x2-block tangential operator (preconditioner), shape (2, ny, nx).
+
+        shift (mm/MPa, >= 0): invert A^tt + shift I instead, the Strang circulant with the same symbol plus the
+        shift (a local stiffness added to every element, e.g. the curvature of turning slip tractions); the
+        symbols of each shift are built once and cached.
+        """
+        if shift == 0.0:
+            symbols = self.inverse_spectra
+        else:
+            symbols = self._shifted_inverses.get(shift)
+            if symbols is None:
+                if not (shift > 0.0 and math.isfinite(shift)):
+                    raise InputError(f"tangential_inverse: shift = {shift!r} mm/MPa, must be finite and >= 0")
+                symbols = self._shifted_inverses[shift] = self._tangential_inverse_symbols(shift)
+        return self._apply_symbols((res_x, res_y), symbols, self._fft_small, out)
+
+    def _tangential_inverse_symbols(self, shift):
+        """Real symbols xx, xy, yy of (A^tt + shift I)^-1 on the unpadded circulant (1/N of the c2r folded in)."""
+        lam, vec = self._tt_eigen
+        scale = 1.0 / (self.small[0] * self.small[1])
+        inv = np.einsum("...ik,...k,...jk->...ij", vec, 1.0 / (lam + shift), vec) * scale
+        return {c: np.ascontiguousarray(inv[..., i, j]) for c, (i, j) in
+                (("xx", (0, 0)), ("yy", (1, 1)), ("xy", (0, 1)))}
 
     # --- small-grid reference --------------------------------------------------------------------
     def dense(self, component: str) -> np.ndarray:

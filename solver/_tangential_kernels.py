@@ -13,6 +13,8 @@ import math
 
 import numba as nb
 
+from ._preconditioner import a_tt as _a_tt
+
 #: |tau| >= (1 - ON_BOUND) g counts as "on the bound" (slip). Renormalised and clipped elements sit
 #: exactly on the bound, so this only absorbs round-off.
 ON_BOUND = 1e-12
@@ -169,11 +171,11 @@ def release(nrm, region, w, dux, duy, tol_abs):
 
 
 @_jit
-def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
+def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy):
     """Projected residual res = -P s (stick: -s; slip: -t (t.s)), curvature kappa = -s.n/g in slip.
 
-    Also writes the slip of the step (s in slip elements, 0 in stick and exterior) and z = Q res, the
-    first factor of the preconditioner (see `_q_slip`). Returns (max |res_I| over stick
+    Also writes the slip of the step (s in slip elements, 0 in stick and exterior), and kappa for the
+    preconditioner (`solver._preconditioner`). Returns (max |res_I| over stick
     and slip, max positive s.n over slip, stopping residual): the stopping residual is the largest slip error
     expressed through the element's own stiffness, in mm of a_tt: |s| in stick, |t.s| a_tt/(a_tt + kappa)
     in slip, where turning the traction is resisted by a_tt + kappa (kappa = max(-s.n, 0)/g), so that it is a_tt
@@ -189,8 +191,6 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
             if r == 0:
                 res[0, j, i] = 0.0
                 res[1, j, i] = 0.0
-                z[0, j, i] = 0.0
-                z[1, j, i] = 0.0
                 kappa[j, i] = 0.0
                 slip[0, j, i] = 0.0
                 slip[1, j, i] = 0.0
@@ -200,8 +200,6 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
             if r == 1:
                 res[0, j, i] = -sx
                 res[1, j, i] = -sy
-                z[0, j, i] = -sx
-                z[1, j, i] = -sy
                 kappa[j, i] = 0.0
                 slip[0, j, i] = 0.0
                 slip[1, j, i] = 0.0
@@ -214,7 +212,6 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
                 res[0, j, i] = nyv * ts
                 res[1, j, i] = -nxv * ts
                 kappa[j, i] = max(-sn, 0.0) / g[j, i]
-                z[0, j, i], z[1, j, i] = _q_slip(nrm, kappa, axx, ayy, j, i, res[0, j, i], res[1, j, i])
                 slip[0, j, i] = sx
                 slip[1, j, i] = sy
                 a = abs(ts)
@@ -229,97 +226,6 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy, z):
             if r == 1 and a > rstop:
                 rstop = a
     return rmax, snmax, rstop
-
-
-@nb.njit(cache=True, inline="always")
-def _a_tt(nrm, axx, ayy, j, i):
-    """Self coefficient along the slip tangent t = (-n_y, n_x) of element (j, i): t^T diag(a_xx, a_yy) t."""
-    return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
-
-
-@nb.njit(cache=True, inline="always")
-def _q_slip(nrm, kappa, axx, ayy, j, i, x, y):
-    """Q (x, y) in a slip element: a_tt/(a_tt + kappa) t (t.(x, y)); returns the two components.
-
-    Q = 1 in stick, a_tt/(a_tt + kappa) t t^T in slip and 0 outside (a_tt = t^T diag(a_xx, a_yy) t, the self
-    coefficient along t). The preconditioner of the linearised operator P (A + kappa) P is
-    z = Q P M P Q r + D r, with M the circulant inverse and D = kappa/(a_tt + kappa)^2 t t^T in slip
-    (`finish_preconditioner`): its diagonal is 1/(a_tt + kappa) (M_II ~ 1/a_tt), the inverse of the element's
-    own stiffness for turning its traction, and the coupling of a slip element to the others fades like
-    a_tt/(a_tt + kappa), so that elements whose curvature dominates (slip far larger than their own traction
-    can change: the contact edge, where g -> 0, and most of the slip area near full sliding) are moved by
-    their own residual and not by their neighbours'. Symmetric on the deflated space (where the solver applies
-    it) and positive definite as far as M is (Q > 0, D >= 0); the solver falls back to the plain residual
-    when r.z <= 0.
-    """
-    tx = -nrm[1, j, i]
-    ty = nrm[0, j, i]
-    att = _a_tt(nrm, axx, ayy, j, i)
-    ft = att / (att + kappa[j, i]) * (tx * x + ty * y)
-    return tx * ft, ty * ft
-
-
-@nb.njit(cache=True, inline="always")
-def _qd_slip(nrm, kappa, axx, ayy, j, i, x, y, rx, ry):
-    """Q (x, y) + D (rx, ry) in a slip element (Q, D as in `_q_slip`); returns the two components."""
-    tx = -nrm[1, j, i]
-    ty = nrm[0, j, i]
-    att = _a_tt(nrm, axx, ayy, j, i)
-    kk = kappa[j, i]
-    ft = att / (att + kk) * (tx * x + ty * y) + kk / ((att + kk) * (att + kk)) * (tx * rx + ty * ry)
-    return tx * ft, ty * ft
-
-
-@_jit
-def finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, deflate, gxx, gxy, gyy, q_prev):
-    """z <- Pi (Q z + D res) (Q, D as in `_q_slip`; Pi removes the part that changes the total force).
-
-    Returns (res.z, z.q_prev): the preconditioned residual norm and the numerator of the conjugation
-    coefficient (see `conjugate`).
-
-    Pi z = z - C G^-1 C^T z with C = [P e_x, P e_y] (the force-constraint vectors restricted to the free
-    directions) and G = C^T C (from `gram_and_fit`); applied only if deflate (prescribed force).
-    Two passes: Q and D with the sums C^T z, then Pi with the product res.z.
-    """
-    ny, nx = region.shape
-    cx = 0.0
-    cy = 0.0
-    for j in range(ny):
-        for i in range(nx):
-            r = region[j, i]
-            if r == 0:
-                z[0, j, i] = 0.0
-                z[1, j, i] = 0.0
-                continue
-            if r == 2:
-                z[0, j, i], z[1, j, i] = _qd_slip(nrm, kappa, axx, ayy, j, i, z[0, j, i], z[1, j, i],
-                                                  res[0, j, i], res[1, j, i])
-            cx += z[0, j, i]
-            cy += z[1, j, i]
-    det = gxx * gyy - gxy * gxy
-    lx = ly = 0.0
-    if deflate and det > 1e-300:
-        lx = (gyy * cx - gxy * cy) / det
-        ly = (-gxy * cx + gxx * cy) / det
-    rz = 0.0
-    zq = 0.0
-    for j in range(ny):
-        for i in range(nx):
-            r = region[j, i]
-            if r == 0:
-                continue
-            if r == 1:
-                z[0, j, i] -= lx
-                z[1, j, i] -= ly
-            else:
-                tx = -nrm[1, j, i]
-                ty = nrm[0, j, i]
-                lt = tx * lx + ty * ly
-                z[0, j, i] -= tx * lt
-                z[1, j, i] -= ty * lt
-            rz += res[0, j, i] * z[0, j, i] + res[1, j, i] * z[1, j, i]
-            zq += z[0, j, i] * q_prev[0, j, i] + z[1, j, i] * q_prev[1, j, i]
-    return rz, zq
 
 
 @_jit

@@ -26,19 +26,17 @@ nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, 
   sum v = 0 in the free directions; dU is recovered in closed form as the least-squares multiplier
   (stick slip and tangential slip orthogonal to the constraint vectors). There is no outer Newton loop on
   dU and no bracketing, so there is nothing to degrade near the traction bound (P12).
-* A symmetric preconditioner z = Q P M P Q r + D r with M the Strang-circulant inverse of the 2x2-block
-  operator (`op.tangential_inverse`) on the unpadded grid, Q = a_tt/(a_tt + kappa) and
-  D = kappa/(a_tt + kappa)^2 on the slip tangents (`_tangential_kernels._q_slip`). It is a good approximate
-  inverse of A in the stick area and on the slip ring alike, which is what keeps the iteration count
-  nearly flat under grid refinement, and its diagonal in a slip element is 1/(a_tt + kappa), the inverse
-  of the element's own stiffness for turning its traction, while its coupling to the other elements fades
-  like a_tt/(a_tt + kappa). With the earlier Q = sqrt(a_tt/(a_tt + kappa)) and no D, an element whose
-  curvature dominates (slip far larger than its own traction can change: the contact edge, where g -> 0,
-  and most of the slip area near full sliding) was moved by its neighbours' residuals, with a weight
-  relative to its own growing like sqrt(kappa/a_tt): edge elements turned back and forth by the
-  trust-region limit for tens of iterations (cold Cattaneo 32 / 50 / 95 -> 22 / 27 / 37 products at
-  dx = 0.2 / 0.1 / 0.05, f_t = 0.99 at dx = 0.05 220 -> 41, and the cold solve at 511^2 converges,
-  where it failed after 500 products).
+* A symmetric preconditioner (`solver._preconditioner`) built from Strang-circulant inverses of the
+  2x2-block operator on the unpadded grid (`op.tangential_inverse`). In the stick area it is M = A^-1; on a
+  slip element, whose turning is resisted by a_tt + kappa, the two-term form Q P M P Q + D with
+  Q = a_tt/(a_tt + kappa), D = kappa/(a_tt + kappa)^2 gives the element its own stiffness as diagonal and lets
+  its coupling fade with kappa (before it, edge elements where g -> 0 were turned back and forth by their
+  neighbours' residuals: cold Cattaneo 32 / 50 / 95 -> 22 / 27 / 37 products at dx = 0.2 / 0.1 / 0.05, and
+  511^2 converges where it failed after 500). On contacts of 4000 elements and more a second circulant, the
+  inverse of A + 4 a I, takes the slip elements with kappa of the order of a_tt: the two-term form weighted
+  their smooth residuals by D ~ 1/(4 a_tt), far above the inverse symbol of A, and on wide slip rings those
+  modes were badly conditioned (warm steps 31 / 59 -> 22 / 28 products at 217^2 / 511^2, cold 37 / 54 -> 34 /
+  38). Both forms are symmetric positive definite, so CG applies unchanged inside a fixed division.
 
 After each CG step, stick elements that leave their disc are projected radially onto it and become slip
 (many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
@@ -49,13 +47,14 @@ slip: released, their stick residual would be far outside the disc), slip elemen
 after any change of the division. The projected gradient method (theory §5.5) is simpler but needs
 thousands of products on these problems; Gauss-Seidel (§5.3) is sequential and grows with the grid.
 
-Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner); the
-element loops are numba kernels (`solver._tangential_kernels`) on preallocated buffers. The
-displacement u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation,
-projection) are added with the self coefficients only, and u is recomputed exactly (one extra
-`op.tangential`) after steps that changed the division by projection and always before convergence is
-accepted. `TangentialResult.iterations` counts every `op.tangential` call of the solve (including
-the product A tau' and the re-synchronisations), so it is the honest cost in convolution pairs.
+Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
+contacts of 4000 elements and more, a quarter of a product each); the element loops are numba kernels
+(`solver._tangential_kernels`, `solver._preconditioner`) on preallocated buffers. The displacement
+u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation, projection) are
+added with the self coefficients only, and u is recomputed exactly (one extra `op.tangential`) after steps
+that changed the division by projection and always before convergence is accepted.
+`TangentialResult.iterations` counts every `op.tangential` call of the solve (including the product A tau'
+and the re-synchronisations), so it is the honest cost in convolution pairs.
 
 Safeguards: a slip traction may turn by at most _MAX_TURN g per iteration (trust region of the
 linearised rotation); when no stick element is left to restore the force after a step, the slip
@@ -101,6 +100,7 @@ import numpy as np
 from bem.errors import ConvergenceError, GrossSlidingError, InputError
 from ._memo import ProductMemo, same
 from . import _force_projection as FP
+from . import _preconditioner as PC
 from . import _tangential_kernels as K
 
 #: Relative margin below the friction capacity sum g dA: a force within this of the capacity is gross
@@ -244,6 +244,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             raise InputError(f"shift = {dU!r} mm must be finite")
 
     ws = _Workspace(shape)
+    precond = PC.Preconditioner(op, shape, int(np.count_nonzero(g)))
     tau, u, u_prev, w, res, z, v, av, q, slip, kappa, region, nrm = (
         ws.tau, ws.u, ws.u_prev, ws.w, ws.res, ws.z, ws.v, ws.av, ws.q, ws.slip, ws.kappa, ws.region, ws.nrm)
     axx, ayy = op.self_coefficients["xx"], op.self_coefficients["yy"]
@@ -329,7 +330,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
                     tr = gxx + gyy
                     dU[0], dU[1] = bx / tr, by / tr
-            rmax, snmax, rstop = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip, axx, ayy, z)
+            rmax, snmax, rstop = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip, axx, ayy)
             # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
             # back inside) only once the current face is solved better than that violation: releasing
             # on a poor multiplier estimate makes the division cycle near the traction bound.
@@ -407,14 +408,11 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 iterations=products, residual=residual_rel, tol=tol,
                 regime=_regime(force, capacity, region))
 
-        # preconditioned, deflated residual: z = Pi (Q P M P Q r + D r)
-        # z = Q res was written by K.residual
-        op.tangential_inverse(z[0], z[1], out=z)
-        rz, zq = K.finish_preconditioner(nrm, region, kappa, axx, ayy, z, res, force_mode, gxx, gxy, gyy, q)
+        # preconditioned, deflated residual: z = Pi (sum_l W_l P M_l P W_l r + D r) (solver._preconditioner)
+        rz, zq = precond.apply(nrm, region, kappa, axx, ayy, res, z, force_mode, (gxx, gxy, gyy), q)
         if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
-            z[...] = res
-            rz, zq = K.finish_preconditioner(nrm, region, np.zeros_like(kappa), axx, ayy, z, res, force_mode,
-                                             gxx, gxy, gyy, q)
+            rz, zq = precond.apply(nrm, region, kappa, axx, ayy, res, z, force_mode, (gxx, gxy, gyy), q,
+                                   levels=False)
             restart = True
         if restart:
             v[...] = z

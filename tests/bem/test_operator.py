@@ -2,6 +2,7 @@
 import numpy as np
 import pytest
 
+from bem.errors import InputError
 from bem.grid import Grid
 from bem.materials import MaterialPair
 from bem.operator import HalfSpaceOperator
@@ -102,3 +103,22 @@ def test_preconditioners_are_the_circulants_of_their_real_symbols_and_symmetric(
     assert np.isclose(np.vdot(a, op.normal_inverse(b)), np.vdot(op.normal_inverse(a), b), rtol=1e-12)
     ab, ba = op.tangential_inverse(a, b), op.tangential_inverse(b, a)   # u = (a, b), w = (b, a)
     assert np.isclose(np.vdot(a, ba[0]) + np.vdot(b, ba[1]), np.vdot(ab[0], b) + np.vdot(ab[1], a), rtol=1e-12)
+
+
+def test_shifted_tangential_inverse_inverts_the_shifted_circulant():
+    """tangential_inverse(shift=s) is the inverse of the Strang circulant C plus s I (the solver's curvature
+    levels): on a grid whose circulant period equals the grid (64 = next_fast_len(64): no truncation),
+    M_0 x - M_s x = s M_0 M_s x to round-off (the resolvent identity), and a bad shift is refused."""
+    grid = Grid(64, 64, 0.02, 0.02, -0.63, -0.63)
+    op = HalfSpaceOperator(grid, MaterialPair.from_moduli(206e3, 0.3, 70e3, 0.33))
+    assert op.small == grid.shape
+    a = op.self_coefficients["xx"]
+    x = np.random.default_rng(5).standard_normal((2,) + grid.shape)
+    for s in (0.5 * a, 4 * a, 60 * a):
+        ms = op.tangential_inverse(*x, shift=s)
+        lhs = op.tangential_inverse(*x) - ms
+        rhs = s * op.tangential_inverse(*ms)
+        assert rel(lhs, rhs) < 1e-10
+    assert op.tangential_inverse(*x, shift=4 * a) is not None and len(op._shifted_inverses) == 3
+    with pytest.raises(InputError, match="shift"):
+        op.tangential_inverse(*x, shift=-a)

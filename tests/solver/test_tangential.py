@@ -333,3 +333,26 @@ def test_cold_solve_on_the_512_grid_converges(f_t):
     res = big.cattaneo(f_t, params=TangentialParams(max_iter=150))
     check_invariants(res, big.bound, big.grid, force=(f_t * MU * FN, 0.0))
     assert abs(res.shift_increment[0] / MINDLIN.shift(f_t) - 1) < 5e-3
+
+
+def test_shifted_preconditioner_levels_speed_up_the_warm_step_not_its_answer(fine_scene, monkeypatch):
+    """On the 109^2 grid (7221 contact elements) the preconditioner adds the circulant inverse of A + 4 a I for
+    slip elements with moderate curvature (`solver._preconditioner`). Same warm load step (f_t 0.5 -> 0.52)
+    with it and with the two-term form alone: the same traction and shift to the solver tolerance (1e-8 of
+    a_self max g: 1e-6 max g and 1e-6 relative leave room for the conditioning of A), Coulomb's law intact
+    in both, and fewer products with the levels (measured 17 against 22)."""
+    from solver import _preconditioner as PC
+    scene = fine_scene
+    assert np.count_nonzero(scene.bound) >= PC.MIN_CONTACT_ELEMENTS
+    first = scene.cattaneo(0.5)
+    F = (0.52 * MU * FN, 0.0)
+    shifted = solve_tangential(scene.op, scene.bound, first.traction, force=F)
+    monkeypatch.setattr(PC, "MIN_CONTACT_ELEMENTS", 10 ** 9)
+    two_term = solve_tangential(scene.op, scene.bound, first.traction, force=F)
+    for res in (shifted, two_term):
+        check_invariants(res, scene.bound, scene.grid, force=F)
+    g = scene.bound.max()
+    np.testing.assert_allclose(shifted.traction, two_term.traction, rtol=0, atol=1e-6 * g)
+    np.testing.assert_allclose(shifted.shift_increment, two_term.shift_increment, rtol=0,
+                               atol=1e-6 * abs(two_term.shift_increment[0]))
+    assert shifted.iterations < two_term.iterations

@@ -1,0 +1,98 @@
+"""The tangential solver's preconditioner (`solver._preconditioner`): weights, symmetry, definiteness, deflation.
+
+CG needs a symmetric positive definite preconditioner; these are checked on a random stick/slip division with
+curvatures kappa from 1e-3 to 1e3 times the self coefficient (the range met between the stick edge and the
+contact edge), for the two-term form and the shifted levels. Units mm, MPa (kappa in mm/MPa).
+"""
+import numpy as np
+import pytest
+
+from bem import Grid, HalfSpaceOperator, MaterialPair
+from solver import _preconditioner as PC
+
+MATERIALS = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
+
+
+@pytest.fixture(scope="module")
+def division():
+    grid = Grid(37, 41, 0.1, 0.1, -1.8, -2.0)
+    op = HalfSpaceOperator(grid, MATERIALS)
+    rng = np.random.default_rng(7)
+    region = rng.choice(np.array([0, 1, 2], np.int8), size=grid.shape, p=[0.2, 0.4, 0.4])
+    angle = rng.uniform(0, 2 * np.pi, grid.shape)
+    nrm = np.array([np.cos(angle), np.sin(angle)])
+    a = op.self_coefficients["xx"]
+    kappa = np.where(region == 2, a * 10 ** rng.uniform(-3, 3, grid.shape), 0.0)
+    kappa[(region == 2) & (rng.random(grid.shape) < 0.1)] = 0.0  # slip elements at the stick edge
+    return grid, op, region, nrm, kappa
+
+
+def projected(r, region, nrm):
+    """P r: unchanged in stick, along the tangent t = (-n_y, n_x) in slip, zero outside."""
+    t = np.array([-nrm[1], nrm[0]])
+    rt = (t * r).sum(0)
+    return np.where(region == 2, t * rt, np.where(region == 1, r, 0.0))
+
+
+def apply(pre, division, r, deflate=False, gram=(1.0, 0.0, 1.0)):
+    grid, op, region, nrm, kappa = division
+    z = np.zeros_like(r)
+    ax, ay = op.self_coefficients["xx"], op.self_coefficients["yy"]
+    pre.apply(nrm, region, kappa, ax, ay, r, z, deflate, gram, np.zeros_like(r))
+    return z
+
+
+def test_level_weights_are_a_partition_of_unity(division):
+    """Every slip element's weights sum to one: sum_l W_l^2 + D (a_tt + kappa) = 1 in the shifted form; the
+    two-term form has W_0 = a_tt/(a_tt + kappa), D = kappa/(a_tt + kappa)^2; stick elements W_0 = 1, D = 0."""
+    grid, op, region, nrm, kappa = division
+    ax, ay = op.self_coefficients["xx"], op.self_coefficients["yy"]
+    att = ax * nrm[1] ** 2 + ay * nrm[0] ** 2
+    n = len(PC.LEVELS)
+    wts = np.zeros((n + 1,) + grid.shape)
+    bufs = np.zeros((max(n - 1, 1), 2) + grid.shape)
+    r = np.ones((2,) + grid.shape)
+    z = np.zeros_like(r)
+    slip, stick = region == 2, region == 1
+    PC.inputs(nrm, region, kappa, ax, ay, r, True, wts, z, bufs)
+    total = (wts[:n] ** 2).sum(0) + wts[n] * (att + kappa)
+    np.testing.assert_allclose(total[slip], 1.0, rtol=1e-12)
+    assert np.all(wts[0][stick] == 1.0) and np.all(wts[1:, stick] == 0.0)
+    assert np.all(wts[:, region == 0] == 0.0)
+    shifted = slip & (kappa > 0) & (kappa < 4 * att)
+    assert shifted.sum() > 50 and np.all(wts[1][shifted] > 0)  # the level carries the moderate curvatures
+    PC.inputs(nrm, region, kappa, ax, ay, r, False, wts, z, bufs)
+    np.testing.assert_allclose(wts[0][slip], (att / (att + kappa))[slip], rtol=1e-14)
+    np.testing.assert_allclose(wts[n][slip], (kappa / (att + kappa) ** 2)[slip], rtol=1e-14)
+
+
+@pytest.mark.parametrize("n_contact", [0, 10 ** 6], ids=["two-term", "shifted levels"])
+def test_preconditioner_is_symmetric_positive_definite(division, n_contact):
+    """<r1, z(r2)> = <r2, z(r1)> to round-off and <r, z(r)> > 0 on the free directions (P r): the conditions
+    under which preconditioned CG converges; z lies in the free directions (zero outside, along t in slip)."""
+    grid, op, region, nrm, kappa = division
+    pre = PC.Preconditioner(op, grid.shape, n_contact)
+    assert pre.shifted == (n_contact >= PC.MIN_CONTACT_ELEMENTS)
+    rng = np.random.default_rng(8)
+    r1, r2 = (projected(rng.standard_normal((2,) + grid.shape), region, nrm) for _ in range(2))
+    z1, z2 = apply(pre, division, r1), apply(pre, division, r2)
+    assert np.isclose(np.vdot(r1, z2), np.vdot(r2, z1), rtol=1e-10)
+    np.testing.assert_allclose(projected(z1, region, nrm), z1, atol=1e-12 * np.abs(z1).max())
+    for k in range(5):
+        r = projected(rng.standard_normal((2,) + grid.shape), region, nrm)
+        assert np.vdot(r, apply(pre, division, r)) > 0
+
+
+def test_deflation_keeps_the_force(division):
+    """With a prescribed force the preconditioned residual must not change sum tau: with the Gram matrix of
+    the constraint vectors C = [P e_x, P e_y], sum over the free directions of z is zero to round-off."""
+    grid, op, region, nrm, kappa = division
+    t = np.array([-nrm[1], nrm[0]])
+    cx = np.where(region == 2, t * t[0], np.where(region == 1, np.array([1.0, 0.0])[:, None, None], 0.0))
+    cy = np.where(region == 2, t * t[1], np.where(region == 1, np.array([0.0, 1.0])[:, None, None], 0.0))
+    gram = (float((cx * cx).sum()), float((cx * cy).sum()), float((cy * cy).sum()))
+    r = projected(np.random.default_rng(9).standard_normal((2,) + grid.shape), region, nrm)
+    for n_contact in (0, 10 ** 6):
+        z = apply(PC.Preconditioner(op, grid.shape, n_contact), division, r, deflate=True, gram=gram)
+        scale = np.abs(z).sum()
+        assert abs((cx * z).sum()) < 1e-12 * scale and abs((cy * z).sum()) < 1e-12 * scale
