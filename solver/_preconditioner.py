@@ -74,43 +74,44 @@ def _weight(rho, level):
     return 0.0
 
 
+#: forms of the preconditioner (`mode` of the kernels)
+PLAIN, TWO_TERM, SHIFTED = 0, 1, 2
+
+
+@nb.njit(cache=True, inline="always")
+def _slip_weights(nrm, kappa, axx, ayy, j, i, mode, level):
+    """(W_level, D) of slip element (j, i) in the given form (W is the factor applied on both sides of M_level)."""
+    if mode == PLAIN:
+        return (1.0 if level == 0 else 0.0), 0.0
+    kk = kappa[j, i]
+    att = a_tt(nrm, axx, ayy, j, i)
+    if mode == TWO_TERM:
+        return (att / (att + kk) if level == 0 else 0.0), kk / ((att + kk) * (att + kk))
+    rho = kk / att
+    return math.sqrt(_weight(rho, level)), _weight(rho, _N) / (att + kk)
+
+
 @_jit
-def inputs(nrm, region, kappa, axx, ayy, res, shifted, wts, z, bufs):
-    """Level inputs W_l res (res is already P r: tangential in slip): level 0 into z, level l >= 1 into bufs[l - 1];
-    the weights W_l (levels 0 .. _N - 1) and the diagonal D into wts (_N + 1, ny, nx). With shifted = False only
-    level 0 and D, in the two-term form W_0 = a_tt/(a_tt + kappa), D = kappa/(a_tt + kappa)^2."""
+def inputs(nrm, region, kappa, axx, ayy, res, mode, level, out):
+    """out = W_level res (res is already P r: tangential in slip; W = 1 in stick for level 0, else 0)."""
     ny, nx = region.shape
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
-            for lv in range(_N + 1):
-                wts[lv, j, i] = 0.0
+            wt = 0.0
             if r == 1:
-                wts[0, j, i] = 1.0
+                wt = 1.0 if level == 0 else 0.0
             elif r == 2:
-                kk = kappa[j, i]
-                att = a_tt(nrm, axx, ayy, j, i)
-                if shifted:
-                    rho = kk / att
-                    for lv in range(_N):
-                        wts[lv, j, i] = math.sqrt(_weight(rho, lv))
-                    wts[_N, j, i] = _weight(rho, _N) / (att + kk)
-                else:
-                    wts[0, j, i] = att / (att + kk)
-                    wts[_N, j, i] = kk / ((att + kk) * (att + kk))
-            z[0, j, i] = wts[0, j, i] * res[0, j, i]
-            z[1, j, i] = wts[0, j, i] * res[1, j, i]
-            if shifted:
-                for lv in range(1, _N):
-                    bufs[lv - 1, 0, j, i] = wts[lv, j, i] * res[0, j, i]
-                    bufs[lv - 1, 1, j, i] = wts[lv, j, i] * res[1, j, i]
+                wt = _slip_weights(nrm, kappa, axx, ayy, j, i, mode, level)[0]
+            out[0, j, i] = wt * res[0, j, i]
+            out[1, j, i] = wt * res[1, j, i]
 
 
 @_jit
-def combine(nrm, region, res, wts, z, bufs, used, deflate, gxx, gxy, gyy, q_prev):
-    """z <- Pi (sum_l W_l P M_l P W_l res + D res) from the levels' outputs (level 0 in z, level l in
-    bufs[l - 1], used[l] = 0 where a level was skipped); returns (res.z, z.q_prev), the preconditioned
-    residual norm and the numerator of the conjugation coefficient.
+def combine(nrm, region, kappa, axx, ayy, res, mode, z, bufs, deflate, gxx, gxy, gyy, q_prev):
+    """z <- Pi (sum_l W_l P M_l P W_l res + D res) from the levels' outputs (level 0 in z, level l >= 1 in
+    bufs[l - 1], used in the SHIFTED form only); returns (res.z, z.q_prev), the preconditioned residual norm and
+    the numerator of the conjugation coefficient.
 
     Pi z = z - C G^-1 C^T z with C = [P e_x, P e_y] (the force-constraint vectors restricted to the free
     directions) and G = C^T C (from `gram_and_fit`); applied only if deflate (prescribed force).
@@ -128,17 +129,14 @@ def combine(nrm, region, res, wts, z, bufs, used, deflate, gxx, gxy, gyy, q_prev
             if r == 2:
                 tx = -nrm[1, j, i]
                 ty = nrm[0, j, i]
-                ft = wts[_N, j, i] * (tx * res[0, j, i] + ty * res[1, j, i])
-                if used[0]:
-                    ft += wts[0, j, i] * (tx * z[0, j, i] + ty * z[1, j, i])
-                for lv in range(1, _N):
-                    if used[lv]:
-                        ft += wts[lv, j, i] * (tx * bufs[lv - 1, 0, j, i] + ty * bufs[lv - 1, 1, j, i])
+                w0, d = _slip_weights(nrm, kappa, axx, ayy, j, i, mode, 0)
+                ft = d * (tx * res[0, j, i] + ty * res[1, j, i]) + w0 * (tx * z[0, j, i] + ty * z[1, j, i])
+                if mode == SHIFTED:
+                    for lv in range(1, _N):
+                        wl = _slip_weights(nrm, kappa, axx, ayy, j, i, mode, lv)[0]
+                        ft += wl * (tx * bufs[lv - 1, 0, j, i] + ty * bufs[lv - 1, 1, j, i])
                 z[0, j, i] = tx * ft
                 z[1, j, i] = ty * ft
-            elif not used[0]:
-                z[0, j, i] = 0.0
-                z[1, j, i] = 0.0
             cx += z[0, j, i]
             cy += z[1, j, i]
     det = gxx * gyy - gxy * gxy
@@ -173,10 +171,13 @@ class Preconditioner:
     def __init__(self, op, shape, n_contact):
         ny, nx = shape
         self.op = op
-        self.shifted = n_contact >= MIN_CONTACT_ELEMENTS and _N > 1
-        self.wts = np.zeros((_N + 1, ny, nx))
-        self.bufs = np.zeros((max(_N - 1, 1), 2, ny, nx))
-        self.used = np.zeros(_N, np.int64)
+        self.mode = SHIFTED if (n_contact >= MIN_CONTACT_ELEMENTS and _N > 1) else TWO_TERM
+        self.bufs = np.zeros((max(_N - 1, 1), 2, ny, nx)) if self.mode == SHIFTED else np.zeros((1, 2, 1, 1))
+        self.shifts = [rho * 0.5 * (op.self_coefficients["xx"] + op.self_coefficients["yy"]) for rho in LEVELS]
+
+    @property
+    def shifted(self):
+        return self.mode == SHIFTED
 
     def apply(self, nrm, region, kappa, axx, ayy, res, z, deflate, gram, q_prev, levels=True):
         """z = Pi (sum_l W_l P M_l P W_l res + D res); returns (res.z, z.q_prev). levels=False: z = Pi res (the
@@ -184,17 +185,13 @@ class Preconditioner:
         gxx, gxy, gyy = gram
         if not levels:
             z[...] = res
-            self.used[...] = 0
-            self.used[0] = 1
-            self.wts[...] = 0.0
-            self.wts[0] = 1.0
-            return combine(nrm, region, res, self.wts, z, self.bufs, self.used, deflate, gxx, gxy, gyy, q_prev)
-        shifted = self.shifted
-        inputs(nrm, region, kappa, axx, ayy, res, shifted, self.wts, z, self.bufs)
-        a_ref = 0.5 * (axx + ayy)
-        for level, rho in enumerate(LEVELS):
-            self.used[level] = level == 0 or shifted
-            if self.used[level]:
-                f = z if level == 0 else self.bufs[level - 1]
-                self.op.tangential_inverse(f[0], f[1], out=f, shift=rho * a_ref)
-        return combine(nrm, region, res, self.wts, z, self.bufs, self.used, deflate, gxx, gxy, gyy, q_prev)
+            return combine(nrm, region, kappa, axx, ayy, res, PLAIN, z, self.bufs, deflate, gxx, gxy, gyy, q_prev)
+        mode = self.mode
+        inputs(nrm, region, kappa, axx, ayy, res, mode, 0, z)
+        self.op.tangential_inverse(z[0], z[1], out=z)
+        if mode == SHIFTED:
+            for level in range(1, _N):
+                f = self.bufs[level - 1]
+                inputs(nrm, region, kappa, axx, ayy, res, mode, level, f)
+                self.op.tangential_inverse(f[0], f[1], out=f, shift=self.shifts[level])
+        return combine(nrm, region, kappa, axx, ayy, res, mode, z, self.bufs, deflate, gxx, gxy, gyy, q_prev)

@@ -44,26 +44,29 @@ def apply(pre, division, r, deflate=False, gram=(1.0, 0.0, 1.0)):
 
 def test_level_weights_are_a_partition_of_unity(division):
     """Every slip element's weights sum to one: sum_l W_l^2 + D (a_tt + kappa) = 1 in the shifted form; the
-    two-term form has W_0 = a_tt/(a_tt + kappa), D = kappa/(a_tt + kappa)^2; stick elements W_0 = 1, D = 0."""
+    two-term form has W_0 = a_tt/(a_tt + kappa), D = kappa/(a_tt + kappa)^2; the level inputs carry W_l r in slip,
+    r (level 0) or nothing (levels >= 1) in stick, and nothing outside the contact."""
     grid, op, region, nrm, kappa = division
     ax, ay = op.self_coefficients["xx"], op.self_coefficients["yy"]
-    att = ax * nrm[1] ** 2 + ay * nrm[0] ** 2
     n = len(PC.LEVELS)
-    wts = np.zeros((n + 1,) + grid.shape)
-    bufs = np.zeros((max(n - 1, 1), 2) + grid.shape)
+    slip = np.argwhere(region == 2)
+    moderate = 0
+    for j, i in slip:
+        att = ax * nrm[1, j, i] ** 2 + ay * nrm[0, j, i] ** 2
+        k = kappa[j, i]
+        w = [PC._slip_weights(nrm, kappa, ax, ay, j, i, PC.SHIFTED, lv) for lv in range(n)]
+        total = sum(wl ** 2 for wl, _ in w) + w[0][1] * (att + k)
+        assert abs(total - 1.0) < 1e-12
+        moderate += 0 < k < 4 * att and w[1][0] > 0
+        w0, d = PC._slip_weights(nrm, kappa, ax, ay, j, i, PC.TWO_TERM, 0)
+        assert np.isclose(w0, att / (att + k), rtol=1e-14) and np.isclose(d, k / (att + k) ** 2, rtol=1e-14)
+    assert moderate > 50  # the shifted level carries the moderate curvatures
     r = np.ones((2,) + grid.shape)
-    z = np.zeros_like(r)
-    slip, stick = region == 2, region == 1
-    PC.inputs(nrm, region, kappa, ax, ay, r, True, wts, z, bufs)
-    total = (wts[:n] ** 2).sum(0) + wts[n] * (att + kappa)
-    np.testing.assert_allclose(total[slip], 1.0, rtol=1e-12)
-    assert np.all(wts[0][stick] == 1.0) and np.all(wts[1:, stick] == 0.0)
-    assert np.all(wts[:, region == 0] == 0.0)
-    shifted = slip & (kappa > 0) & (kappa < 4 * att)
-    assert shifted.sum() > 50 and np.all(wts[1][shifted] > 0)  # the level carries the moderate curvatures
-    PC.inputs(nrm, region, kappa, ax, ay, r, False, wts, z, bufs)
-    np.testing.assert_allclose(wts[0][slip], (att / (att + kappa))[slip], rtol=1e-14)
-    np.testing.assert_allclose(wts[n][slip], (kappa / (att + kappa) ** 2)[slip], rtol=1e-14)
+    out = np.empty_like(r)
+    for level in range(n):
+        PC.inputs(nrm, region, kappa, ax, ay, r, PC.SHIFTED, level, out)
+        assert np.all(out[:, region == 1] == (1.0 if level == 0 else 0.0))
+        assert np.all(out[:, region == 0] == 0.0)
 
 
 @pytest.mark.parametrize("n_contact", [0, 10 ** 6], ids=["two-term", "shifted levels"])
