@@ -23,7 +23,8 @@ with Pi the deflation of the force constraint (prescribed force only). Two forms
   Measured on the Cattaneo scene (benchmarks/tangential_cattaneo.py, benchmarks/README.md): warm steps after a
   load / profile change 17 / 21, 22 / 26, 28 / 37 products at 109^2 / 217^2 / 511^2 (two-term form: 22 / 27,
   31 / 40, 59 / 83), cold 26 / 34 / 38 (27 / 37 / 54), for one more circulant (a quarter of a product) per
-  iteration. A third level (kappa = 64 a) helped only at f_t = 0.999 (-8 and -10 products at 217^2 and
+  iteration; on 109^2 that did not pay in time, so the level is used from 217^2 on (MIN_CONTACT_ELEMENTS, where
+  the measured times are given). A third level (kappa = 64 a) helped only at f_t = 0.999 (-8 and -10 products at 217^2 and
   511^2, elsewhere within +-7) for another quarter; on 55^2 (1801 contact elements) the shifted level gained
   nothing.
 
@@ -39,10 +40,12 @@ import numpy as np
 LEVELS = (0.0, 4.0)
 #: width, in log(1 + kappa/a_tt), over which the last level hands the weight to the diagonal.
 BLEND = 1.4
-#: the shifted levels (l >= 1) are used only on contacts of at least this many elements (about 36 across the
-#: radius): on smaller ones they measured no gain (Cattaneo on 55^2, 1801 elements) and cost a quarter of a product
-#: per level and iteration.
-MIN_CONTACT_ELEMENTS = 4000
+#: the shifted levels (l >= 1) are used only on contacts of at least this many elements (a/dx ~ 70). Each level
+#: costs about a quarter of a product per iteration; measured single-thread time, shifted / two-term form
+#: (benchmarks/README.md): Cattaneo 217^2 (28849 contact elements) cold 1.07, warm load 0.81, profile 0.72, and
+#: 511^2 about 0.7 / 0.5 / 0.5; but 109^2 (7221) cold 1.20, warm 0.93-0.96, and a coupled step at a/dx = 40
+#: (about 5000) 1.09-1.17, with 5-25 % fewer products; on 55^2 (1801) no fewer products at all.
+MIN_CONTACT_ELEMENTS = 16000
 _P = tuple(math.log1p(x) for x in LEVELS)
 _N = len(LEVELS)
 

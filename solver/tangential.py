@@ -32,7 +32,7 @@ nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, 
   Q = a_tt/(a_tt + kappa), D = kappa/(a_tt + kappa)^2 gives the element its own stiffness as diagonal and lets
   its coupling fade with kappa (before it, edge elements where g -> 0 were turned back and forth by their
   neighbours' residuals: cold Cattaneo 32 / 50 / 95 -> 22 / 27 / 37 products at dx = 0.2 / 0.1 / 0.05, and
-  511^2 converges where it failed after 500). On contacts of 4000 elements and more a second circulant, the
+  511^2 converges where it failed after 500). On contacts of 16000 elements and more a second circulant, the
   inverse of A + 4 a I, takes the slip elements with kappa of the order of a_tt: the two-term form weighted
   their smooth residuals by D ~ 1/(4 a_tt), far above the inverse symbol of A, and on wide slip rings those
   modes were badly conditioned (warm steps 31 / 59 -> 22 / 28 products at 217^2 / 511^2, cold 37 / 54 -> 34 /
@@ -48,7 +48,7 @@ recomputed exactly; the CG recurrence restarts after any change of the division.
 thousands of products on these problems; Gauss-Seidel (§5.3) is sequential and grows with the grid.
 
 Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
-contacts of 4000 elements and more, a quarter of a product each); the element loops are numba kernels
+contacts of 16000 elements and more, a quarter of a product each); the element loops are numba kernels
 (`solver._tangential_kernels`, `solver._preconditioner`) on preallocated buffers. The displacement
 u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation, projection) are
 added with the self coefficients only, and u is recomputed exactly (one extra `op.tangential`) after steps
