@@ -2,10 +2,12 @@
 
     .venv/bin/python benchmarks/tangential_cattaneo.py [--repeats 5]
 
-For dx = 0.2, 0.1, 0.05 mm (CONTACT's grids: 55^2, 109^2, 217^2) and 0.0211 mm (510^2): wall time (median of --repeats, single FFTW thread, after a warm-up solve so that
-numba compilation and FFTW planning are excluded), op.tangential products ("iterations") cold (f_t = 0.5 from
-zero traction) and warm (f_t 0.5 -> 0.52; and the pressure shifted by one cell in y at f_t = 0.5), the errors of
-the stick radius (along y = 0) and of the shift against Mindlin, the time of one op.tangential product measured
+For dx = 0.2, 0.1, 0.05 mm (CONTACT's grids: 55^2, 109^2, 217^2) and 0.0211 mm (511^2): wall time (median of
+--repeats, single FFTW thread, after a warm-up solve so that numba compilation and FFTW planning are excluded),
+op.tangential products ("iterations"; also the CG search directions, "cg_steps", the unit of TangCG's
+iteration counts) cold (f_t = 0.5 from zero traction) and warm (f_t 0.5 -> 0.52; and the pressure shifted by
+one cell in y at f_t = 0.5), the errors of the stick radius (along y = 0) and of the shift against Mindlin, the
+time of one op.tangential product measured
 in the same run, and the shift error near the traction bound (f_t = 0.9 .. 0.999). Pressure: solve_normal.
 JSON to benchmarks/results/tangential_cattaneo.json. Timings are medians on a shared 2-core machine: noisy.
 """
@@ -70,6 +72,7 @@ def run(dx, repeats, near_bound):
         "cold_time_per_iteration_in_pairs": t_cold / cold.iterations / t_pair,
         "warm_load_iterations": warm.iterations, "warm_load_time_s": t_warm,
         "warm_profile_iterations": moved.iterations, "warm_profile_time_s": t_moved,
+        "cg_steps": {"cold": cold.steps, "warm_load": warm.steps, "warm_profile": moved.steps},
         "stick_radius_mm": c_num, "stick_radius_error_mm": c_num - MINDLIN.stick_radius(0.5),
         "shift_error_rel": cold.shift_increment[0] / MINDLIN.shift(0.5) - 1,
         "warm_shift_error_rel": (cold.shift_increment[0] + warm.shift_increment[0]) / MINDLIN.shift(0.52) - 1,
@@ -79,7 +82,7 @@ def run(dx, repeats, near_bound):
     for f in near_bound:
         try:
             r, t = median_time(lambda: solve_tangential(op, g, zero, force=F(f)), 1)
-            row["near_bound"][str(f)] = {"iterations": r.iterations, "time_s": t,
+            row["near_bound"][str(f)] = {"iterations": r.iterations, "cg_steps": r.steps, "time_s": t,
                                          "shift_error_rel": r.shift_increment[0] / MINDLIN.shift(f) - 1,
                                          "stick_elements": int((r.region == 1).sum())}
         except Exception as exc:  # report, do not hide
@@ -97,7 +100,9 @@ def main():
         row = run(dx, args.repeats, (0.9, 0.95, 0.99, 0.999))
         rows.append(row)
         print(f"dx={dx}: grid {row['grid']}, cold {row['cold_iterations']} it {row['cold_time_s']:.3f} s, "
-              f"warm {row['warm_load_iterations']} / {row['warm_profile_iterations']} it, "
+              f"warm {row['warm_load_iterations']} / {row['warm_profile_iterations']} it "
+              f"(CG steps {row['cg_steps']['cold']}; "
+              f"{row['cg_steps']['warm_load']} / {row['cg_steps']['warm_profile']}), "
               f"pair {row['pair_time_s'] * 1e3:.2f} ms, per-it {row['cold_time_per_iteration_in_pairs']:.2f} pairs, "
               f"dc {row['stick_radius_error_mm']:+.3f} mm, dU {row['shift_error_rel']:+.3%}", flush=True)
         for f, v in row["near_bound"].items():

@@ -24,9 +24,9 @@ with Pi the deflation of the force constraint (prescribed force only). Two forms
   load / profile change 17 / 21, 22 / 26, 28 / 37 products at 109^2 / 217^2 / 511^2 (two-term form: 22 / 27,
   31 / 40, 59 / 83), cold 26 / 34 / 38 (27 / 37 / 54), for one more circulant (a quarter of a product) per
   iteration; on 109^2 that did not pay in time, so the level is used from 217^2 on (MIN_CONTACT_ELEMENTS, where
-  the measured times are given). A third level (kappa = 64 a) helped only at f_t = 0.999 (-8 and -10 products at 217^2 and
-  511^2, elsewhere within +-7) for another quarter; on 55^2 (1801 contact elements) the shifted level gained
-  nothing.
+  the measured times are given). A third level (kappa = 64 a) helped only at f_t = 0.999 (-8 and -10 products
+  at 217^2 and 511^2, elsewhere within +-7) for another quarter; on 55^2 (1801 contact elements) the shifted
+  level gained nothing.
 
 Both are symmetric in r and positive definite (sums of W M W with M positive definite, D >= 0), so CG applies
 unchanged.

@@ -68,7 +68,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     p = p_prev.copy()
     p_guess = initial_p
     change = np.inf
-    n_products = t_products = 0
+    n_products = t_products = t_steps = 0
     for outer in range(1, max_outer + 1):
         normal = solve_normal(op, profile, force=Fn, initial=p_guess,
                               extra_displacement=op.normal_from_tangential(tau[0], tau[1]),
@@ -79,13 +79,14 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
                                 params=tangential_params)
         n_products += normal.iterations
         t_products += tang.iterations
+        t_steps += tang.steps
         pmax = float(normal.pressure.max())
         dp = float(np.abs(normal.pressure - p).max()) / pmax
         dt = float(np.abs(tang.traction - tau).max()) / (mu * pmax)
         change = max(dp, dt)
         p, tau, p_guess = normal.pressure, tang.traction, normal.pressure
         if outer > 1 and change <= coupling_tol:
-            return replace(normal, iterations=n_products), replace(tang, iterations=t_products), outer
+            return replace(normal, iterations=n_products), replace(tang, iterations=t_products, steps=t_steps), outer
     raise ConvergenceError("Panagiotopoulos loop (coupled normal/tangential) did not converge",
                            solver="coupled", iterations=max_outer, residual=change, tol=coupling_tol,
                            regime=f"beta = {op.materials.beta:.4g}, mu = {mu}, "

@@ -44,8 +44,9 @@ traction (s.n > 0) are released to stick (or, when that slip exceeds 2 a_self g,
 own traction can undo over its whole range, their traction is turned against the slip and they stay in
 slip: released, their stick residual would be far outside the disc), slip elements are renormalised to
 |tau| = g, and the force is restored by a uniform shift of the stick tractions wherever u is then
-recomputed exactly; the CG recurrence restarts after any change of the division. The projected gradient method (theory §5.5) is simpler but needs
-thousands of products on these problems; Gauss-Seidel (§5.3) is sequential and grows with the grid.
+recomputed exactly; the CG recurrence restarts after any change of the division. The projected gradient
+method (theory §5.5) is simpler but needs thousands of products on these problems; Gauss-Seidel (§5.3) is
+sequential and grows with the grid.
 
 Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
 contacts of 16000 elements and more, a quarter of a product each); the element loops are numba kernels
@@ -155,9 +156,10 @@ class TangentialResult:
     slip: np.ndarray            # (2, ny, nx) mm, slip of this step (0 in stick)
     displacement: np.ndarray    # (2, ny, nx) mm, u = A tau (+ the coupling part if extra given)
     region: np.ndarray          # (ny, nx) int8: 0 exterior, 1 stick, 2 slip
-    iterations: int
+    iterations: int             # op.tangential products of the solve (the cost, re-synchronisations included)
     residual: float
     converged: bool
+    steps: int = 0              # CG search directions (the unit of TangCG's iteration counts); <= iterations
 
 
 def traction_capacity(bound, grid) -> float:
@@ -317,6 +319,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     stage = 0
     best, best_at, released = math.inf, 0, 0
     early_synced = False
+    steps = 0
     while True:
         # slip of the step for the current traction and division
         n_stick, n_slip, *gram = K.classify(tau, g, region, nrm, u, u_prev, e_arr, e is not None, w)
@@ -397,7 +400,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                     _stick_point_shift(w, g, region, dU, slip)
                 _memo.store(op, tau, u, memo_reuses)
                 return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products,
-                               residual_rel, True, force_mode)
+                               residual_rel, True, force_mode, steps)
             if force_mode:
                 _restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)
             matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
@@ -423,6 +426,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         else:
             K.conjugate(z, v, -zq / vq_prev)
         matvec(v, av)
+        steps += 1
         vq, rv = K.curvature_product(nrm, region, kappa, v, av, q, res)
         if vq <= 0.0 or rv <= 0.0:
             if restart:
@@ -515,11 +519,12 @@ def _regime(force, capacity, region):
     return f"{ft}{n_stick} stick and {n_slip} slip elements"
 
 
-def _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products, residual, converged, force_mode):
+def _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products, residual, converged, force_mode,
+            steps=0):
     displacement = u.copy()
     if extra_slip is not None:
         displacement += np.asarray(extra_slip, dtype=float)
     force = np.array([tau[0].sum(), tau[1].sum()]) * dA
     return TangentialResult(traction=tau.copy(), shift_increment=dU.copy(), force=force, slip=slip.copy(),
                             displacement=displacement, region=region.copy(), iterations=products,
-                            residual=float(residual), converged=converged)
+                            residual=float(residual), converged=converged, steps=steps)

@@ -357,3 +357,12 @@ def test_shifted_preconditioner_levels_speed_up_the_warm_step_not_its_answer(fin
     np.testing.assert_allclose(shifted.shift_increment, two_term.shift_increment, rtol=0,
                                atol=1e-6 * abs(two_term.shift_increment[0]))
     assert shifted.iterations < two_term.iterations
+
+
+def test_cg_steps_count_the_search_directions(scene):
+    """`steps` counts the CG search directions (one product A v each); `iterations` counts every product, so the
+    difference is the start product A tau, the exact re-synchronisations of u and the memo misses: at least one
+    (the final exact check) and at most half of the products here (measured 22 products, 13 steps)."""
+    res = scene.cattaneo(0.5)
+    assert 1 <= res.steps < res.iterations
+    assert res.iterations - res.steps <= res.iterations // 2
