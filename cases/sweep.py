@@ -263,6 +263,11 @@ def _py(v):
     return None if v == "none" else v
 
 
+def _stored_row(run: PlannedRun, outdir) -> dict:
+    """The summary row of a run whose complete file is on disk."""
+    return _row(run, {"status": "complete", "error": "", "summary": stored_summary(run.path)["summary"]}, outdir)
+
+
 def is_done(run: PlannedRun) -> bool:
     """True if the run's file is complete and stores exactly the planned scene (then it is not redone)."""
     if not is_complete(run.path):
@@ -584,8 +589,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     rows, todo = {}, []
     for run in plan:
         if is_done(run):
-            stored = stored_summary(run.path)
-            rows[run.index] = _row(run, {"status": "complete", "error": "", "summary": stored["summary"]}, outdir)
+            rows[run.index] = _stored_row(run, outdir)
         else:
             todo.append(run)
     skipped = len(plan) - len(todo)
@@ -629,6 +633,9 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         if pool is not None:
             pool.stop()
             _remove_stale_temporaries(outdir, plan)  # a terminated worker cannot clean up its partial file
+        for run in todo:  # runs whose file was complete before their result reached this process
+            if run.index not in rows and is_done(run):
+                rows[run.index] = _stored_row(run, outdir)
         write_summary(outdir, keys, rows.values(), attrs=attrs)
         if progress is not None:
             print(f"sweep: interrupted; {len(rows)} of {len(plan)} run(s) finished are in {outdir}/summary.csv; "

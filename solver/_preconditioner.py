@@ -36,6 +36,9 @@ import math
 import numba as nb
 import numpy as np
 
+# LEVELS, BLEND (and _P, _N) are compile-time constants of the cached numba kernels: change them here, in the
+# source (which invalidates the cache), not by patching the module at run time. MIN_CONTACT_ELEMENTS is read
+# in Python and may be patched.
 #: kappa_l / a_ref of the circulant levels (level 0 is the plain inverse of A^tt).
 LEVELS = (0.0, 4.0)
 #: width, in log(1 + kappa/a_tt), over which the last level hands the weight to the diagonal.
@@ -54,7 +57,8 @@ _jit = nb.njit(cache=True, nogil=True, fastmath=False)
 
 @nb.njit(cache=True, inline="always")
 def a_tt(nrm, axx, ayy, j, i):
-    """Self coefficient along the slip tangent t = (-n_y, n_x) of element (j, i): t^T diag(a_xx, a_yy) t."""
+    """Self coefficient along the slip tangent t = (-n_y, n_x) of element (j, i): t^T diag(a_xx, a_yy) t
+    (a copy lives in `_tangential_kernels`: numba's cache is per file)."""
     return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
 
 

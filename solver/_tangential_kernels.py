@@ -13,7 +13,6 @@ import math
 
 import numba as nb
 
-from ._preconditioner import a_tt as _a_tt
 
 #: |tau| >= (1 - ON_BOUND) g counts as "on the bound" (slip). Renormalised and clipped elements sit
 #: exactly on the bound, so this only absorbs round-off.
@@ -27,6 +26,14 @@ def _mag(x, y):
     """|(x, y)|. Tractions (MPa) and slips (mm) are far from overflow, so the plain root serves: a third of
     the cost of math.hypot in these loops."""
     return math.sqrt(x * x + y * y)
+
+
+@nb.njit(cache=True, inline="always")
+def _a_tt(nrm, axx, ayy, j, i):
+    """Self coefficient along the slip tangent t = (-n_y, n_x): t^T diag(a_xx, a_yy) t. The same as
+    `_preconditioner.a_tt`, kept here because numba's cache is invalidated per file: an inlined function from
+    another module would stay stale in these kernels' cache when it changes."""
+    return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
 
 
 @nb.njit(cache=True, inline="always")
@@ -284,14 +291,12 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
     stick elements that leave their disc are projected radially onto it and become slip. The
     displacement of these small local corrections is added with the self coefficients only (the
     caller re-synchronises u = A tau exactly before accepting convergence). Returns
-    (number of stick elements clipped, max |correction| in MPa, sum of corrections x, y, and for
+    (number of stick elements clipped, max |correction| in MPa, and for
     `restore_force`: sum tau x, y and the number of stick elements after the step).
     """
     ny, nx = g.shape
     n_clip = 0
     dmax = 0.0
-    dsx = 0.0
-    dsy = 0.0
     fx = 0.0
     fy = 0.0
     n_stick = 0
@@ -314,8 +319,6 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
                     f = max_turn * gi / am
                     u[0, j, i] += axx * (ax * f - ax)
                     u[1, j, i] += ayy * (ay * f - ay)
-                    dsx += ax * f - ax
-                    dsy += ay * f - ay
                     ax *= f
                     ay *= f
                     n_clip += 1
@@ -333,8 +336,6 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
                 ty += dy
                 u[0, j, i] += axx * dx
                 u[1, j, i] += ayy * dy
-                dsx += dx
-                dsy += dy
                 d = _mag(dx, dy)
                 if d > dmax:
                     dmax = d
@@ -344,15 +345,14 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
             tau[1, j, i] = ty
             fx += tx
             fy += ty
-    return n_clip, dmax, dsx, dsy, fx, fy, n_stick
+    return n_clip, dmax, fx, fy, n_stick
 
 
 @_jit
 def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs, sx, sy, n_stick):
     """Put the total force back on (fx, fy) (MPa x elements) by uniform shifts of the stick tractions.
 
-    Used after a renormalisation/projection step; (sx, sy) = sum tau and n_stick are the current ones
-    (returned by `step`). Stick elements pushed out of their disc are projected and become slip, and
+    (sx, sy) = sum tau and n_stick are the current ones (from `step`, or summed by the caller). Stick elements pushed out of their disc are projected and become slip, and
     the shift is repeated for the remainder (at most 20 times); the displacement of the shift is added
     with the self coefficients. Returns 0 when |sum tau - f| <= tol_abs, 1 when no stick element is
     left or the remainder persists (the caller then projects onto the force).

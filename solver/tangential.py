@@ -21,9 +21,10 @@ nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, 
   tau = g n; the linearised operator is t^T A t plus the curvature kappa = |s|/g (rotating a traction of
   fixed length changes its direction). The stick/slip operator K = P (A + kappa) P (P = identity in stick,
   t t^T in slip) is symmetric positive definite, so CG applies without change inside a fixed division.
-* The force constraint by deflation, as the approach in NormCG (theory §4.3, §5.2 alternative): the
-  iterate always carries exactly the prescribed force; every direction is projected onto
-  sum v = 0 in the free directions; dU is recovered in closed form as the least-squares multiplier
+* The force constraint by deflation, as the approach in NormCG (theory §4.3, §5.2 alternative): every
+  direction is projected onto sum v = 0 in the free directions, so a CG step keeps the force (only the
+  renormalisation of the slip tractions moves it, by second-order amounts, until the next exact
+  re-synchronisation puts it back); dU is recovered in closed form as the least-squares multiplier
   (stick slip and tangential slip orthogonal to the constraint vectors). There is no outer Newton loop on
   dU and no bracketing, so there is nothing to degrade near the traction bound (P12).
 * A symmetric preconditioner (`solver._preconditioner`) built from Strang-circulant inverses of the
@@ -58,11 +59,11 @@ that changed the division by projection and always before convergence is accepte
 and the re-synchronisations), so it is the honest cost in convolution pairs.
 
 Safeguards: a slip traction may turn by at most _MAX_TURN g per iteration (trust region of the
-linearised rotation); when no stick element is left to restore the force after a step, the slip
-tractions are turned on their rims (`_force_projection.project_on_force` with the region: the plain
-Euclidean projection would pull all of them inside their discs, into stick, and the division would
-collapse: f_t = 0.999 failed at dx = 0.2 with the first, hard-threshold form of the slip preconditioner;
-with the final one the Cattaneo cases do not reach this fallback); when no element is left in stick (stick
+linearised rotation); when no stick element is left to restore the force (f_t -> 1: at every
+re-synchronisation of the Cattaneo solve at f_t = 0.999), the slip tractions are turned on their rims
+(`_force_projection.project_on_force` with the region: the plain Euclidean projection would pull all of them
+inside their discs, into stick, and the division would collapse: f_t = 0.999 failed at dx = 0.2 with the
+first, hard-threshold form of the slip preconditioner), and the CG recurrence restarts; when no element is left in stick (stick
 zone below one element, f_t -> 1), the reported dU is the displacement of the sub-element stick point (see
 `_stick_point_shift`).
 Cycling safeguard: a cold solve close to the bound on fine grids (217^2, f_t >= 0.95) used to cycle between
@@ -91,7 +92,8 @@ the kappa weight, elements at the contact edge with g ~ 1e-4 max g and a directi
 the test for 20 of 86 products at 511^2, where tol 1e-9 was out of reach; measured against a reference at
 tol 1e-11 the traction error was 0.09-0.57 tol max g for tol 1e-4 ... 1e-8 on the Cattaneo grids;
 `tests/solver/test_tangential.py` checks < 3 tol max g.)
-Force balance and |tau| <= g hold to round-off by construction.
+|tau| <= g holds to round-off by construction at every iterate, and the force balance in every returned
+result (it is restored before the final exact re-synchronisation).
 """
 from dataclasses import dataclass
 import math
@@ -388,8 +390,8 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             exact = True
         exact_after_sync = False
         if not (synced or early_synced) and residual_rel < _SYNC_EARLY * tol:
-            if force_mode:
-                _restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)
+            if force_mode and _restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol):
+                restart = True  # the division changed: the recurrence is not kept
             matvec(tau, u)  # early exact re-synchronisation; the CG recurrence is kept
             synced = early_synced = True
             memo_reuses = 0
@@ -436,7 +438,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             restart = True
             continue
         alpha = rv / vq
-        n_clip, dmax, dsx, dsy, fsx, fsy, n_stick = K.step(tau, v, alpha, u, av, g, region, axx, ayy, _MAX_TURN)
+        n_clip, dmax, fsx, fsy, n_stick = K.step(tau, v, alpha, u, av, g, region, axx, ayy, _MAX_TURN)
         restart = n_clip > 0
         vq_prev = vq
         synced = synced and dmax == 0.0
@@ -446,7 +448,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         # re-synchronisations). Restoring it after every step cost a re-synchronisation and a restart per step
         # when no stick element is left (the rims must turn: f_t = 0.999, 43 -> 21 products at 217^2; other
         # counts unchanged). In between, the iterate misses the force by the renormalisations since.
-        if force_mode and (dsx != 0.0 or dsy != 0.0) and (n_clip > 0 or (exact and dmax > 0.0)):
+        if force_mode and (n_clip > 0 or (exact and dmax > 0.0)):
             if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol, fsx, fsy, n_stick):
                 # no stick element left to carry the force: turn the slip tractions (they stay on their rim)
                 FP.project_on_force(tau.copy(), g, f_cells, tau, region)
@@ -460,10 +462,14 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
 def _restore_force(tau, region, g, f_cells, u, axx, ayy, tol):
     """Put sum tau back on f_cells (MPa x elements) by shifting the stick tractions (`K.restore_force`), or, with
     no stick element left, by turning the slip tractions along their rims; u is updated by the self
-    coefficients only (the caller re-synchronises it)."""
+    coefficients only (the caller re-synchronises it). Returns True when the division changed (stick elements
+    pushed onto their rim, or the rims turned): the caller then restarts the CG recurrence."""
+    n_stick = int(np.count_nonzero(region == 1))
     if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
-                       float(tau[1].sum()), int(np.count_nonzero(region == 1))):
+                       float(tau[1].sum()), n_stick):
         FP.project_on_force(tau.copy(), g, f_cells, tau, region)
+        return True
+    return int(np.count_nonzero(region == 1)) != n_stick
 
 
 def _keep_slip_on_bound(tau, g, prev_region):
