@@ -13,18 +13,23 @@ from solver import _preconditioner as PC
 MATERIALS = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 
 
-@pytest.fixture(scope="module")
-def division():
-    grid = Grid(37, 41, 0.1, 0.1, -1.8, -2.0)
+def random_division(grid, seed, p):
+    """Operator, random region (probabilities p of exterior, stick, slip), slip directions and curvatures
+    (1e-3 ... 1e3 a_self on slip elements, a tenth of them 0: slip elements at the stick edge)."""
     op = HalfSpaceOperator(grid, MATERIALS)
-    rng = np.random.default_rng(7)
-    region = rng.choice(np.array([0, 1, 2], np.int8), size=grid.shape, p=[0.2, 0.4, 0.4])
+    rng = np.random.default_rng(seed)
+    region = rng.choice(np.array([0, 1, 2], np.int8), size=grid.shape, p=p)
     angle = rng.uniform(0, 2 * np.pi, grid.shape)
     nrm = np.array([np.cos(angle), np.sin(angle)])
     a = op.self_coefficients["xx"]
     kappa = np.where(region == 2, a * 10 ** rng.uniform(-3, 3, grid.shape), 0.0)
-    kappa[(region == 2) & (rng.random(grid.shape) < 0.1)] = 0.0  # slip elements at the stick edge
+    kappa[(region == 2) & (rng.random(grid.shape) < 0.1)] = 0.0
     return grid, op, region, nrm, kappa
+
+
+@pytest.fixture(scope="module")
+def division():
+    return random_division(Grid(37, 41, 0.1, 0.1, -1.8, -2.0), 7, [0.2, 0.4, 0.4])
 
 
 def projected(r, region, nrm):
@@ -103,15 +108,8 @@ def test_dense_preconditioner_has_positive_eigenvalues_on_the_free_directions(n_
     """The preconditioner as a dense matrix on the free directions (e_x, e_y in stick, t in slip) of a small
     random division with curvatures 1e-3 ... 1e3 a_self: symmetric to round-off and every eigenvalue positive
     (a sign error of D on the high-curvature elements, or a one-sided weight, makes it fail)."""
-    grid = Grid(12, 13, 0.1, 0.1, -0.6, -0.6)
-    op = HalfSpaceOperator(grid, MATERIALS)
-    rng = np.random.default_rng(11)
-    region = rng.choice(np.array([0, 1, 2], np.int8), size=grid.shape, p=[0.1, 0.4, 0.5])
-    angle = rng.uniform(0, 2 * np.pi, grid.shape)
-    nrm = np.array([np.cos(angle), np.sin(angle)])
-    a = op.self_coefficients["xx"]
-    kappa = np.where(region == 2, a * 10 ** rng.uniform(-3, 3, grid.shape), 0.0)
-    division = (grid, op, region, nrm, kappa)
+    division = random_division(Grid(12, 13, 0.1, 0.1, -0.6, -0.6), 11, [0.1, 0.4, 0.5])
+    grid, op, region, nrm, kappa = division
     basis = []
     for j, i in np.argwhere(region == 1):
         for c in range(2):
