@@ -63,9 +63,9 @@ linearised rotation); when no stick element is left to restore the force (f_t ->
 re-synchronisation of the Cattaneo solve at f_t = 0.999), the slip tractions are turned on their rims
 (`_force_projection.project_on_force` with the region: the plain Euclidean projection would pull all of them
 inside their discs, into stick, and the division would collapse: f_t = 0.999 failed at dx = 0.2 with the
-first, hard-threshold form of the slip preconditioner), and the CG recurrence restarts; when no element is left in stick (stick
-zone below one element, f_t -> 1), the reported dU is the displacement of the sub-element stick point (see
-`_stick_point_shift`).
+first, hard-threshold form of the slip preconditioner), and the CG recurrence restarts; when no element is
+left in stick (stick zone below one element, f_t -> 1), the reported dU is the displacement of the
+sub-element stick point (see `_stick_point_shift`).
 Cycling safeguard: a cold solve close to the bound on fine grids (217^2, f_t >= 0.95) used to cycle between
 release and projection. When the best exact residual has not halved for _STALL_PRODUCTS products, releases
 become conservative (only once the face residual is below the violation); if that stalls too, the iteration
@@ -275,7 +275,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         else:
             matvec(tau_p, u_prev)
     if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
-        return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, 0, 0.0, True, force_mode)
+        return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, 0, 0.0, True, force_mode, 0)
     tau[...] = tau_p if initial is None else np.asarray(initial, dtype=float)
     if not math.isfinite(float(tau.sum())) and not np.all(np.isfinite(tau)):  # the sum is the cheap test
         raise InputError("initial traction must be finite")
@@ -352,11 +352,8 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 n_flip = K.flip_reversed(tau, nrm, g, region, w, dU[0], dU[1], u, axx, ayy, _FLIP_SLIP * a_self)
             if n_flip:
                 synced = False
-                if force_mode and K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol,
-                                                  float(tau[0].sum()), float(tau[1].sum()),
-                                                  int(np.count_nonzero(region == 1))):
-                    FP.project_on_force(tau.copy(), g, f_cells, tau, region)
-                    matvec(tau, u)
+                if force_mode and _restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)[0]:
+                    matvec(tau, u)  # the rims turned: not a local correction
                     synced = True
                 # the force restoration may have pushed stick elements onto their rims: division, directions
                 # and w afresh (the shift fit of the next round is recomputed from them)
@@ -390,7 +387,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             exact = True
         exact_after_sync = False
         if not (synced or early_synced) and residual_rel < _SYNC_EARLY * tol:
-            if force_mode and _restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol):
+            if force_mode and any(_restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)):
                 restart = True  # the division changed: the recurrence is not kept
             matvec(tau, u)  # early exact re-synchronisation; the CG recurrence is kept
             synced = early_synced = True
@@ -462,14 +459,14 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
 def _restore_force(tau, region, g, f_cells, u, axx, ayy, tol):
     """Put sum tau back on f_cells (MPa x elements) by shifting the stick tractions (`K.restore_force`), or, with
     no stick element left, by turning the slip tractions along their rims; u is updated by the self
-    coefficients only (the caller re-synchronises it). Returns True when the division changed (stick elements
-    pushed onto their rim, or the rims turned): the caller then restarts the CG recurrence."""
+    coefficients only (the caller re-synchronises it). Returns (rims turned, stick elements pushed onto their
+    rim): either changes the division, and the first is not a local correction of u."""
     n_stick = int(np.count_nonzero(region == 1))
     if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
                        float(tau[1].sum()), n_stick):
         FP.project_on_force(tau.copy(), g, f_cells, tau, region)
-        return True
-    return int(np.count_nonzero(region == 1)) != n_stick
+        return True, False
+    return False, int(np.count_nonzero(region == 1)) != n_stick
 
 
 def _keep_slip_on_bound(tau, g, prev_region):
@@ -526,7 +523,7 @@ def _regime(force, capacity, region):
 
 
 def _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products, residual, converged, force_mode,
-            steps=0):
+            steps):
     displacement = u.copy()
     if extra_slip is not None:
         displacement += np.asarray(extra_slip, dtype=float)
