@@ -354,8 +354,9 @@ def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs, sx, sy, n_stick)
 
     (sx, sy) = sum tau and n_stick are the current ones (from `step`, or summed by the caller). Stick elements
     pushed out of their disc are projected and become slip, and the shift is repeated for the remainder (at
-    most 20 times); the displacement of the shift is added with the self coefficients. Returns 0 when |sum tau - f| <= tol_abs, 1 when no stick element is
-    left or the remainder persists (the caller then projects onto the force).
+    most 20 times); the displacement of the shift is added with the self coefficients. Returns 0 when
+    |sum tau - f| <= tol_abs, 1 when no stick element is left or the remainder persists (the caller then
+    projects onto the force).
     """
     ny, nx = region.shape
     for _ in range(20):
