@@ -1,15 +1,19 @@
-"""Euclidean projection of a traction field onto the Coulomb discs and the force constraint (theory.md §5).
+"""Placing a traction field on the Coulomb discs and the force constraint (theory.md §5).
 
-Used by the tangential solver (`solver.tangential`) to place the starting traction, and to restore the
-total force when the uniform shift of the stick tractions cannot. Fields are (2, ny, nx) tractions and
-(ny, nx) bounds g = mu p in MPa; f = F/dA is the prescribed sum of the tractions over the elements (MPa).
+Used by the tangential solver (`solver.tangential`): the start of a step (`start_traction`: the Euclidean
+projection `project_on_force`, or `place_on_force` when the previous division is given), and the restoration
+of the total force after the renormalisations of the slip tractions (`restore_force`: a uniform shift of the
+stick tractions, or, with none left, a turn of the slip tractions along their rims). Fields are (2, ny, nx)
+tractions and (ny, nx) bounds g = mu p in MPa; f = F/dA is the prescribed sum of the tractions over the
+elements (MPa).
 """
 import math
 
 import numpy as np
 
-from bem.errors import ConvergenceError
-from ._tangential_kernels import _jit, _mag
+from bem.errors import ConvergenceError, InputError
+from ._tangential_kernels import ON_BOUND, _jit, _mag
+from ._tangential_kernels import restore_force as _kernel_restore_force
 
 
 _NO_RING = np.zeros((1, 1), np.int8)
@@ -120,3 +124,63 @@ def project_on_force(y, g, f, tau_out, region=None):
     if err > 1e-10 * cap:
         raise ConvergenceError("could not place the starting traction on the force constraint",
                                solver="tangential/force-projection", residual=err / cap, tol=1e-10)
+
+
+def start_traction(tau, initial, g, f_cells, previous_region, region, u, axx, ayy):
+    """tau <- the start of a step: `initial` (MPa) projected onto the discs |tau| <= g and, when f_cells
+    (MPa x elements, the prescribed sum of tau; None for a prescribed shift) is given, onto the force. With
+    `previous_region` (int8, 2 = slip) its slip elements start on the new bound and the force is met by the
+    stick elements alone (`place_on_force`); without it by the Euclidean projection (`project_on_force`).
+    region and u are scratch here."""
+    tau[...] = np.asarray(initial, dtype=float)
+    if not math.isfinite(float(tau.sum())) and not np.all(np.isfinite(tau)):  # the sum is the cheap test
+        raise InputError("initial traction must be finite")
+    project_discs(tau, g)
+    if previous_region is None:
+        if f_cells is not None:
+            project_on_force(tau.copy(), g, f_cells, tau)
+        return
+    prev_region = np.asarray(previous_region)
+    if prev_region.shape != g.shape:
+        raise InputError(f"previous_region has shape {prev_region.shape}, the grid is {g.shape}")
+    _keep_slip_on_bound(tau, g, prev_region)
+    if f_cells is not None:
+        place_on_force(tau, g, f_cells, region, u, axx, ayy)
+
+
+def restore_force(tau, region, g, f_cells, u, axx, ayy, tol):
+    """Put sum tau back on f_cells (MPa x elements) by shifting the stick tractions (`_kernel_restore_force`), or, with
+    no stick element left, by turning the slip tractions along their rims; u is updated by the self
+    coefficients only (the caller re-synchronises it). Returns (rims turned, stick elements pushed onto their
+    rim): either changes the division, and the first is not a local correction of u."""
+    n_stick = int(np.count_nonzero(region == 1))
+    if _kernel_restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
+                       float(tau[1].sum()), n_stick):
+        project_on_force(tau.copy(), g, f_cells, tau, region)
+        return True, False
+    return False, int(np.count_nonzero(region == 1)) != n_stick
+
+
+def _keep_slip_on_bound(tau, g, prev_region):
+    """Elements that slipped in the previous step start on their (new) bound: tau = g tau/|tau|."""
+    m = np.hypot(tau[0], tau[1])
+    sel = (prev_region == 2) & (g > 0) & (m > 0)
+    f = np.where(sel, g / np.where(m > 0, m, 1.0), 1.0)
+    tau *= f
+
+
+def place_on_force(tau, g, f_cells, region, u, axx, ayy):
+    """Put the start on the force constraint sum tau = f_cells (MPa x elements) by a uniform shift of the
+    elements inside their disc (those pushed out are projected, see `_kernel_restore_force`); the elements on
+    the bound stay there. The Euclidean projection onto discs and force (the fallback when no element is
+    left inside) would move about half of them inside, into stick, and the solver would have to find them
+    again one projection event at a time: from the converged traction perturbed by 1e-6 g in stick, 86
+    products against 19 at dx = 0.05 (f_t = 0.5). Writes region (and u by self coefficients, a scratch
+    buffer here)."""
+    m = np.hypot(tau[0], tau[1])
+    region[...] = np.where(g <= 0, 0, np.where(m >= (1 - ON_BOUND) * g, 2, 1))
+    n_stick = int(np.count_nonzero(region == 1))
+    tol = 1e-15 * float(np.sum(g))
+    if _kernel_restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
+                       float(tau[1].sum()), n_stick):
+        project_on_force(tau.copy(), g, f_cells, tau, region)

@@ -204,7 +204,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     previous_region : optional (ny, nx) region of a solve whose traction is `initial` (int8, 2 = slip),
         e.g. the previous outer iteration of the coupled loop: its slip elements start on the new bound
         (tau = g tau/|tau|) even where the bound grew, and the start is put on the force by shifting the
-        stick elements only (`_place_on_force`). Without it the start is the Euclidean projection of
+        stick elements only (`_force_projection.place_on_force`). Without it the start is the Euclidean projection of
         `initial` onto the discs and the force, which puts an element whose bound grew, and about half of
         the elements on the bound, inside the disc, i.e. in stick, and the division must be found again
         (coupled loop: about 2x the products). Not used for rolling steps, where it measured worse (the
@@ -276,20 +276,8 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             matvec(tau_p, u_prev)
     if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
         return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, 0, 0.0, True, force_mode, 0)
-    tau[...] = tau_p if initial is None else np.asarray(initial, dtype=float)
-    if not math.isfinite(float(tau.sum())) and not np.all(np.isfinite(tau)):  # the sum is the cheap test
-        raise InputError("initial traction must be finite")
-    FP.project_discs(tau, g)
-    if previous_region is None:
-        if force_mode:
-            FP.project_on_force(tau.copy(), g, F / dA, tau)
-    else:
-        prev_region = np.asarray(previous_region)
-        if prev_region.shape != shape:
-            raise InputError(f"previous_region has shape {prev_region.shape}, the grid is {shape}")
-        _keep_slip_on_bound(tau, g, prev_region)
-        if force_mode:
-            _place_on_force(tau, g, F / dA, region, u, axx, ayy)
+    FP.start_traction(tau, tau_p if initial is None else initial, g, F / dA if force_mode else None,
+                      previous_region, region, u, axx, ayy)
     if same(tau, tau_p):
         u[...] = u_prev
     elif np.any(tau):
@@ -352,7 +340,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 n_flip = K.flip_reversed(tau, nrm, g, region, w, dU[0], dU[1], u, axx, ayy, _FLIP_SLIP * a_self)
             if n_flip:
                 synced = False
-                if force_mode and _restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)[0]:
+                if force_mode and FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)[0]:
                     matvec(tau, u)  # the rims turned: not a local correction
                     synced = True
                 # the force restoration may have pushed stick elements onto their rims: division, directions
@@ -387,7 +375,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             exact = True
         exact_after_sync = False
         if not (synced or early_synced) and residual_rel < _SYNC_EARLY * tol:
-            if force_mode and any(_restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)):
+            if force_mode and any(FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)):
                 restart = True  # the division changed: the recurrence is not kept
             matvec(tau, u)  # early exact re-synchronisation; the CG recurrence is kept
             synced = early_synced = True
@@ -401,7 +389,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                 return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products,
                                residual_rel, True, force_mode, steps)
             if force_mode:
-                _restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)
+                FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)
             matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
             synced = True
             exact_after_sync = True
@@ -454,44 +442,6 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             synced = True
             memo_reuses = 0
-
-
-def _restore_force(tau, region, g, f_cells, u, axx, ayy, tol):
-    """Put sum tau back on f_cells (MPa x elements) by shifting the stick tractions (`K.restore_force`), or, with
-    no stick element left, by turning the slip tractions along their rims; u is updated by the self
-    coefficients only (the caller re-synchronises it). Returns (rims turned, stick elements pushed onto their
-    rim): either changes the division, and the first is not a local correction of u."""
-    n_stick = int(np.count_nonzero(region == 1))
-    if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
-                       float(tau[1].sum()), n_stick):
-        FP.project_on_force(tau.copy(), g, f_cells, tau, region)
-        return True, False
-    return False, int(np.count_nonzero(region == 1)) != n_stick
-
-
-def _keep_slip_on_bound(tau, g, prev_region):
-    """Elements that slipped in the previous step start on their (new) bound: tau = g tau/|tau|."""
-    m = np.hypot(tau[0], tau[1])
-    sel = (prev_region == 2) & (g > 0) & (m > 0)
-    f = np.where(sel, g / np.where(m > 0, m, 1.0), 1.0)
-    tau *= f
-
-
-def _place_on_force(tau, g, f_cells, region, u, axx, ayy):
-    """Put the start on the force constraint sum tau = f_cells (MPa x elements) by a uniform shift of the
-    elements inside their disc (those pushed out are projected, see `K.restore_force`); the elements on
-    the bound stay there. The Euclidean projection onto discs and force (the fallback when no element is
-    left inside) would move about half of them inside, into stick, and the solver would have to find them
-    again one projection event at a time: from the converged traction perturbed by 1e-6 g in stick, 86
-    products against 19 at dx = 0.05 (f_t = 0.5). Writes region (and u by self coefficients, a scratch
-    buffer here)."""
-    m = np.hypot(tau[0], tau[1])
-    region[...] = np.where(g <= 0, 0, np.where(m >= (1 - K.ON_BOUND) * g, 2, 1))
-    n_stick = int(np.count_nonzero(region == 1))
-    tol = 1e-15 * float(np.sum(g))
-    if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
-                       float(tau[1].sum()), n_stick):
-        FP.project_on_force(tau.copy(), g, f_cells, tau, region)
 
 
 def _stick_point_shift(w, g, region, dU, slip):

@@ -230,7 +230,7 @@ def test_start_placement_keeps_elements_on_the_bound_and_meets_the_force(scene):
     """The start is put on the force constraint by shifting only the elements inside their disc: elements on
     the bound stay on it (same traction), |tau| <= g everywhere and sum tau dA = F to round-off."""
     from solver import _tangential_kernels as K
-    from solver.tangential import _place_on_force
+    from solver._force_projection import place_on_force
     res = scene.cattaneo(0.5)
     g, dA = scene.bound, scene.grid.cell_area
     tau = res.traction.copy()
@@ -239,7 +239,7 @@ def test_start_placement_keeps_elements_on_the_bound_and_meets_the_force(scene):
     assert on_bound.sum() > 100  # the Cattaneo slip ring
     target = np.array([0.53 * MU * FN, 0.02 * MU * FN]) / dA  # a force the previous traction does not carry
     region = np.zeros(g.shape, np.int8)
-    _place_on_force(tau, g, target, region, np.zeros_like(tau), 1.0, 1.0)
+    place_on_force(tau, g, target, region, np.zeros_like(tau), 1.0, 1.0)
     np.testing.assert_array_equal(tau[:, on_bound], res.traction[:, on_bound])
     np.testing.assert_allclose(tau.sum(axis=(1, 2)), target, rtol=0, atol=1e-12 * g.sum())
     assert np.all(np.hypot(*tau) <= g * (1 + 1e-12))
