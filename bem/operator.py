@@ -326,6 +326,17 @@ class HalfSpaceOperator:
         return {c: np.ascontiguousarray(inv[..., i, j]) for c, (i, j) in
                 (("xx", (0, 0)), ("yy", (1, 1)), ("xy", (0, 1)))}
 
+    def tangential_block(self, rows, cols):
+        """Dense A^tt among k elements given by their row (y) and column (x) indices: the (k, k) arrays
+        (xx, xy, yy) in mm/MPa, entry [a, b] the displacement at element a from a unit traction on element b.
+        k^2 coefficient evaluations: for a few hundred elements, where one FFT product would cost more."""
+        g, m = self.grid, self.materials
+        X = np.asarray(cols, dtype=float) * g.dx
+        Y = np.asarray(rows, dtype=float) * g.dy
+        c = influence_coefficients(X[:, None] - X[None, :], Y[:, None] - Y[None, :], g.dx, g.dy, m.G, m.nu, m.K,
+                                   components=("xx", "xy", "yy"))
+        return c["xx"], c["xy"], c["yy"]
+
     # --- small-grid reference --------------------------------------------------------------------
     def dense(self, component: str) -> np.ndarray:
         """Dense (N x N) matrix of one component, N = nx*ny, row-major over (j, i). For tests only."""

@@ -132,34 +132,101 @@ def gram_and_fit(nrm, region, w):
 
 
 @_jit
-def flip_reversed(tau, nrm, g, region, w, dux, duy, u, axx, ayy, big):
-    """Slip elements whose slip points along the traction (s.n > 0) and is large, |s| > big g (big in mm/MPa):
-    their traction is turned to oppose the slip, tau = -g s/|s|, and they stay in slip; nrm, u and w are
-    updated there (u, w by the self coefficients). Returns the number of elements turned."""
+def flip_direction(tau, nrm, g, region, w, dux, duy, big, d):
+    """d <- the change that turns each slip element whose slip points along its traction and is large
+    (s.n > 0, |s| > big g, big in mm/MPa) to oppose its slip: d = -g s/|s| - tau there, 0 elsewhere.
+    Returns (number of such elements, sum d_x, sum d_y)."""
     ny, nx = region.shape
     n = 0
+    cx = 0.0
+    cy = 0.0
     for j in range(ny):
         for i in range(nx):
+            d[0, j, i] = 0.0
+            d[1, j, i] = 0.0
             if region[j, i] == 2:
                 sx = w[0, j, i] - dux
                 sy = w[1, j, i] - duy
                 sn = sx * nrm[0, j, i] + sy * nrm[1, j, i]
                 m = _mag(sx, sy)
                 if sn > 0.0 and m > big * g[j, i]:
-                    tx = -g[j, i] * sx / m
-                    ty = -g[j, i] * sy / m
-                    dx = tx - tau[0, j, i]
-                    dy = ty - tau[1, j, i]
-                    tau[0, j, i] = tx
-                    tau[1, j, i] = ty
-                    nrm[0, j, i] = tx / g[j, i]
-                    nrm[1, j, i] = ty / g[j, i]
-                    u[0, j, i] += axx * dx
-                    u[1, j, i] += ayy * dy
-                    w[0, j, i] += axx * dx
-                    w[1, j, i] += ayy * dy
+                    d[0, j, i] = -g[j, i] * sx / m - tau[0, j, i]
+                    d[1, j, i] = -g[j, i] * sy / m - tau[1, j, i]
+                    cx += d[0, j, i]
+                    cy += d[1, j, i]
                     n += 1
-    return n
+    return n, cx, cy
+
+
+@_jit
+def shift_stick(d, region, cx, cy):
+    """d += (cx, cy) on the stick elements (the force-neutral part of a flip direction)."""
+    ny, nx = region.shape
+    for j in range(ny):
+        for i in range(nx):
+            if region[j, i] == 1:
+                d[0, j, i] += cx
+                d[1, j, i] += cy
+
+
+@_jit
+def slope(w, dux, duy, d, region):
+    """sum over the contact of s.d with s = w - dU: the derivative of the step's energy along d."""
+    ny, nx = region.shape
+    acc = 0.0
+    for j in range(ny):
+        for i in range(nx):
+            if region[j, i] != 0:
+                acc += (w[0, j, i] - dux) * d[0, j, i] + (w[1, j, i] - duy) * d[1, j, i]
+    return acc
+
+
+@_jit
+def apply_flip(tau, d, t, u, ad, exact, g, region, axx, ayy):
+    """tau += t d for a flip direction from `flip_direction` (+ `shift_stick`); u += t A d (ad = A d) if exact,
+    else u += t diag(a_xx, a_yy) d (self coefficients, the caller re-synchronises).
+
+    A turned slip element stays on its rim (renormalised) when t = 1; for t < 1 it lies on the chord inside its
+    disc and becomes stick. Stick elements pushed out of their disc by the force-neutral shift are projected
+    onto it and become slip (u by the self coefficients there). Returns the number of elements projected."""
+    ny, nx = region.shape
+    n_proj = 0
+    for j in range(ny):
+        for i in range(nx):
+            r = region[j, i]
+            if r == 0:
+                continue
+            dx = d[0, j, i]
+            dy = d[1, j, i]
+            if exact:
+                u[0, j, i] += t * ad[0, j, i]
+                u[1, j, i] += t * ad[1, j, i]
+            else:
+                u[0, j, i] += t * axx * dx
+                u[1, j, i] += t * ayy * dy
+            if dx == 0.0 and dy == 0.0:
+                continue
+            tx = tau[0, j, i] + t * dx
+            ty = tau[1, j, i] + t * dy
+            m = _mag(tx, ty)
+            gi = g[j, i]
+            if r == 2:
+                if t >= 1.0:
+                    tx *= gi / m
+                    ty *= gi / m
+                else:
+                    region[j, i] = 1
+            elif m > gi:
+                f = gi / m
+                u[0, j, i] += axx * (tx * f - tx)
+                u[1, j, i] += ayy * (ty * f - ty)
+                tx *= f
+                ty *= f
+                region[j, i] = 2
+                n_proj += 1
+            tau[0, j, i] = tx
+            tau[1, j, i] = ty
+    return n_proj
 
 
 @_jit

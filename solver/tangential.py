@@ -42,8 +42,9 @@ nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, 
 After each CG step, stick elements that leave their disc are projected radially onto it and become slip
 (many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
 traction (s.n > 0) are released to stick (or, when that slip exceeds 2 a_self g, more than the element's
-own traction can undo over its whole range, their traction is turned against the slip and they stay in
-slip: released, their stick residual would be far outside the disc), slip elements are renormalised to
+own traction can undo over its whole range, their traction is turned against the slip, by the step that
+minimises the energy along the turns (`_turn_reversed`): released, their stick residual would be far outside
+the disc), slip elements are renormalised to
 |tau| = g, and the force is restored by a uniform shift of the stick tractions wherever u is then
 recomputed exactly; the CG recurrence restarts after any change of the division. The projected gradient
 method (theory §5.5) is simpler but needs thousands of products on these problems; Gauss-Seidel (§5.3) is
@@ -112,8 +113,11 @@ CAPACITY_MARGIN = 1e-9
 #: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
 _MAX_TURN = 0.5
 #: A slip element whose slip points along its traction and exceeds _FLIP_SLIP a_self g is turned against its
-#: slip rather than released to stick (`_tangential_kernels.flip_reversed`).
+#: slip rather than released to stick (`_turn_reversed`).
 _FLIP_SLIP = 2.0
+#: Up to this many turned elements the curvature of the turns comes from their dense influence block (k^2
+#: coefficients, about 0.1 ms for 100), above it from one product (`_turn_reversed`).
+_DENSE_TURNS = 256
 
 #: the last two converged tractions and their displacements A^tt tau, per operator (see solver._memo)
 _memo = ProductMemo(size=2)
@@ -178,6 +182,7 @@ class _Workspace:
         self.tau, self.u, self.u_prev, self.w = f2(), f2(), f2(), f2()
         self.res, self.z, self.v, self.av, self.q, self.slip = f2(), f2(), f2(), f2(), f2(), f2()
         self.nrm = f2()  # unit direction of the slip tractions (written by K.classify)
+        self.d, self.ad = f2(), f2()  # direction of the turns of reversed slip tractions and its product
         self.kappa = np.zeros((ny, nx))
         self.region = np.zeros((ny, nx), np.int8)
 
@@ -295,9 +300,8 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     tol = params.tol
     scale = a_self * gmax
     gxx = gxy = gyy = 0.0  # Gram matrix of the force constraint (force mode, from K.gram_and_fit)
-    if force_mode:
-        f_cells = F / dA  # prescribed sum of tau over the elements (MPa)
-        restore_tol = 1e-15 * float(np.sum(g))
+    f_cells = F / dA if force_mode else None  # prescribed sum of tau over the elements (MPa)
+    restore_tol = 1e-15 * float(np.sum(g))
     restart = True
     synced = True
     vq_prev = 1.0
@@ -335,17 +339,10 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             # instead of releasing it (released, its stick residual -s would be far outside its disc and the
             # step that clips it back wrecked the iterate: f_t = 0.75 and 0.9 failed at 511^2). Only in the
             # first round, before any release: the re-classification below derives the division afresh.
-            n_flip = 0
             if release_round == 0:
-                n_flip = K.flip_reversed(tau, nrm, g, region, w, dU[0], dU[1], u, axx, ayy, _FLIP_SLIP * a_self)
-            if n_flip:
-                synced = False
-                if force_mode and FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)[0]:
-                    matvec(tau, u)  # the rims turned: not a local correction
-                    synced = True
-                # the force restoration may have pushed stick elements onto their rims: division, directions
-                # and w afresh (the shift fit of the next round is recomputed from them)
-                K.classify(tau, g, region, nrm, u, u_prev, e_arr, e is not None, w)
+                synced = _turn_reversed(op, tau, nrm, g, region, w, dU, u, u_prev, e_arr, e is not None,
+                                        n_stick if force_mode else -1, ws, _FLIP_SLIP * a_self, matvec, synced,
+                                        f_cells, restore_tol, axx, ayy)[1]
             released += K.release(nrm, region, w, dU[0], dU[1], 0.0)
             restart = True
         residual_rel = max(rstop, snmax) / scale
@@ -442,6 +439,49 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             synced = True
             memo_reuses = 0
+
+
+def _turn_reversed(op, tau, nrm, g, region, w, dU, u, u_prev, e_arr, has_e, n_stick, ws, big, matvec, synced,
+                   f_cells, restore_tol, axx, ayy):
+    """Turn the slip tractions whose slip points along them and exceeds big g against their slip, with an exact
+    line search on the energy of the step. Made whole and all at once (a Jacobi step), the turns of neighbouring
+    edge elements interact: 67 turns raised the energy threefold and the solve cycled (profile step with
+    previous_region, Cattaneo 55^2: no convergence in 500 products; prescribed shift at 511^2: 129 products).
+    Along the turns d the energy is J(t) = J + t s.d + t^2 d.Ad/2, so t = min(1, -s.d/d.Ad) (t = 1 for a single
+    element: that is the threshold big = 2 a_self). At t = 1 the turned elements stay on their rim, below it
+    they lie inside their disc (stick). Up to _DENSE_TURNS turned elements d.Ad is summed from their dense
+    influence block and u is updated by the self coefficients (the force is then restored by the stick
+    elements as after any step); above it d is made force-neutral by a uniform shift of the stick elements
+    (n_stick > 0; n_stick < 0 for a prescribed shift) and one product A d gives the curvature and the exact
+    update of u. Re-classifies the iterate when anything moved. Returns (number of turned elements, synced)."""
+    d, ad = ws.d, ws.ad
+    n_turn, cx, cy = K.flip_direction(tau, nrm, g, region, w, dU[0], dU[1], big, d)
+    if n_turn == 0:
+        return 0, synced
+    dense = n_turn <= _DENSE_TURNS
+    if dense:
+        rows, cols = np.nonzero((d[0] != 0.0) | (d[1] != 0.0))
+        xx, xy, yy = op.tangential_block(rows, cols)
+        dx, dy = d[0, rows, cols], d[1, rows, cols]
+        curv = float(dx @ (xx @ dx + 2.0 * (xy @ dy)) + dy @ (yy @ dy))
+    else:
+        if n_stick > 0:
+            K.shift_stick(d, region, -cx / n_stick, -cy / n_stick)
+        matvec(d, ad)
+        curv = K.dot(d, ad)
+    descent = -K.slope(w, dU[0], dU[1], d, region)
+    if descent <= 0.0:
+        return 0, synced  # not a descent direction: the elements are released instead
+    t = 1.0 if curv <= descent else descent / curv
+    synced = synced and not dense and K.apply_flip(tau, d, t, u, ad, not dense, g, region, axx, ayy) == 0
+    if dense:
+        K.apply_flip(tau, d, t, u, ad, False, g, region, axx, ayy)
+    if f_cells is not None and (dense or n_stick == 0):  # the turns moved the force
+        if FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)[0]:
+            matvec(tau, u)  # the rims turned: not a local correction
+            synced = True
+    K.classify(tau, g, region, nrm, u, u_prev, e_arr, has_e, w)
+    return n_turn, synced
 
 
 def _stick_point_shift(w, g, region, dU, slip):

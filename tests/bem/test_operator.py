@@ -39,6 +39,22 @@ def test_fft_products_equal_dense_matrix_products(small):
     assert rel(w, flat(-D["xz"] @ tx.ravel() - D["yz"] @ ty.ravel())) < 1e-12
 
 
+def test_tangential_block_is_the_fft_product_restricted_to_the_elements(small):
+    """op.tangential_block (dense A^tt among a few elements, for the solver's turn line search) against the FFT
+    product of a field supported on those elements, read at the same elements."""
+    grid, op = small
+    rng = np.random.default_rng(3)
+    rows = np.array([0, 4, 4, 8, 2, 7])
+    cols = np.array([0, 3, 12, 5, 11, 1])
+    d = rng.standard_normal((2, rows.size))
+    field = np.zeros((2,) + grid.shape)
+    field[:, rows, cols] = d
+    u = op.tangential(field[0], field[1])[:, rows, cols]
+    xx, xy, yy = op.tangential_block(rows, cols)
+    assert rel(u[0], xx @ d[0] + xy @ d[1]) < 1e-12
+    assert rel(u[1], xy @ d[0] + yy @ d[1]) < 1e-12
+
+
 def test_out_argument_is_filled_and_buffers_do_not_leak_between_calls(small):
     grid, op = small
     rng = np.random.default_rng(2)
