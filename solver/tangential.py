@@ -43,7 +43,7 @@ After each CG step, stick elements that leave their disc are projected radially 
 (many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
 traction (s.n > 0) are released to stick (or, when that slip exceeds 2 a_self g, more than the element's
 own traction can undo over its whole range, their traction is turned against the slip, by the step that
-minimises the energy along the turns (`_turn_reversed`): released, their stick residual would be far outside
+minimises the energy along the turns (`_tangcg.ProjectedTangCG.turn_reversed`): released, their stick residual would be far outside
 the disc), slip elements are renormalised to
 |tau| = g, and the force is restored by a uniform shift of the stick tractions wherever u is then
 recomputed exactly; the CG recurrence restarts after any change of the division. The projected gradient
@@ -59,7 +59,7 @@ that changed the division by projection and always before convergence is accepte
 `TangentialResult.iterations` counts every `op.tangential` call of the solve (including the product A tau'
 and the re-synchronisations), so it is the honest cost in convolution pairs.
 
-Safeguards: a slip traction may turn by at most _MAX_TURN g per iteration (trust region of the
+Safeguards: a slip traction may turn by at most MAX_TURN g per iteration (trust region of the
 linearised rotation); when no stick element is left to restore the force (f_t -> 1: at every
 re-synchronisation of the Cattaneo solve at f_t = 0.999), the slip tractions are turned on their rims
 (`_force_projection.project_on_force` with the region: the plain Euclidean projection would pull all of them
@@ -68,11 +68,11 @@ first, hard-threshold form of the slip preconditioner), and the CG recurrence re
 left in stick (stick zone below one element, f_t -> 1), the reported dU is the displacement of the
 sub-element stick point (see `_stick_point_shift`).
 Cycling safeguard: a cold solve close to the bound on fine grids (217^2, f_t >= 0.95) used to cycle between
-release and projection. When the best exact residual has not halved for _STALL_PRODUCTS products, releases
+release and projection. When the best exact residual has not halved for STALL_PRODUCTS products, releases
 become conservative (only once the face residual is below the violation); if that stalls too, the iteration
 returns to the best exact iterate. When an exact re-synchronisation finds the residual far above the
 tolerance (drift of the self-coefficient updates on dense slip areas), u is kept exact from then on. One
-early re-synchronisation, when the residual first falls below _SYNC_EARLY tol, removes the drift of the large
+early re-synchronisation, when the residual first falls below SYNC_EARLY tol, removes the drift of the large
 early moves without restarting the recurrence, so that the final check rarely fails.
 Product memo: A tau' is taken from the previous solve when tau' is its traction (rolling), see
 `previous_displacement`.
@@ -104,31 +104,13 @@ import numpy as np
 from bem.errors import ConvergenceError, GrossSlidingError, InputError
 from ._memo import ProductMemo, same
 from . import _force_projection as FP
-from . import _preconditioner as PC
-from . import _tangential_kernels as K
+from ._tangcg import ProjectedTangCG
 
 #: Relative margin below the friction capacity sum g dA: a force within this of the capacity is gross
 #: sliding (the stick zone would be far below one element and the problem has no usable solution).
 CAPACITY_MARGIN = 1e-9
-#: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
-_MAX_TURN = 0.5
-#: A slip element whose slip points along its traction and exceeds _FLIP_SLIP a_self g is turned against its
-#: slip rather than released to stick (`_turn_reversed`).
-_FLIP_SLIP = 2.0
-#: Up to this many turned elements the curvature of the turns comes from their dense influence block (k^2
-#: coefficients, about 0.1 ms for 100), above it from one product (`_turn_reversed`).
-_DENSE_TURNS = 256
-
 #: the last two converged tractions and their displacements A^tt tau, per operator (see solver._memo)
 _memo = ProductMemo(size=2)
-#: Safeguard 1: products without halving the best exact residual before releases become conservative.
-_STALL_PRODUCTS = 30
-#: Safeguard 2: an exact re-synchronisation that finds the residual above _SYNC_JUMP tol switches to exact u.
-_SYNC_JUMP = 1e4
-#: One early exact re-synchronisation when the residual first falls below _SYNC_EARLY tol: the drift of the
-#: self-coefficient updates made in the large early moves is then removed while the CG recurrence continues,
-#: so the final check usually passes at once (paper rolling: 26 -> 22 products per ratcheting step).
-_SYNC_EARLY = 1e4
 
 
 @dataclass(frozen=True)
@@ -171,20 +153,6 @@ class TangentialResult:
 def traction_capacity(bound, grid) -> float:
     """Largest tangential force (N) the contact can carry: sum g dA with g = mu p the bound (MPa)."""
     return float(np.sum(bound)) * grid.cell_area
-
-
-class _Workspace:
-    """Preallocated grid buffers of one solve (allocated once per call, reused by every iteration)."""
-
-    def __init__(self, shape):
-        ny, nx = shape
-        f2 = lambda: np.zeros((2, ny, nx))
-        self.tau, self.u, self.u_prev, self.w = f2(), f2(), f2(), f2()
-        self.res, self.z, self.v, self.av, self.q, self.slip = f2(), f2(), f2(), f2(), f2(), f2()
-        self.nrm = f2()  # unit direction of the slip tractions (written by K.classify)
-        self.d, self.ad = f2(), f2()  # direction of the turns of reversed slip tractions and its product
-        self.kappa = np.zeros((ny, nx))
-        self.region = np.zeros((ny, nx), np.int8)
 
 
 def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, initial=None,
@@ -252,18 +220,11 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         if not np.all(np.isfinite(dU)):
             raise InputError(f"shift = {dU!r} mm must be finite")
 
-    ws = _Workspace(shape)
-    precond = PC.Preconditioner(op, shape, int(np.count_nonzero(g)))
-    tau, u, u_prev, w, res, z, v, av, q, slip, kappa, region, nrm = (
-        ws.tau, ws.u, ws.u_prev, ws.w, ws.res, ws.z, ws.v, ws.av, ws.q, ws.slip, ws.kappa, ws.region, ws.nrm)
-    axx, ayy = op.self_coefficients["xx"], op.self_coefficients["yy"]
-    a_self = max(axx, ayy)
-    products = 0
-
-    def matvec(field, out):
-        nonlocal products
-        products += 1
-        op.tangential(field[0], field[1], out=out)
+    it = ProjectedTangCG(op, g, dU, F / dA if force_mode else None,
+                         None if extra_slip is None else np.asarray(extra_slip, dtype=float), params,
+                         lambda region: _regime(force, capacity, region))
+    ws = it.ws
+    tau, u, u_prev, region = ws.tau, ws.u, ws.u_prev, ws.region
 
     # --- previous displacement and starting traction -----------------------------------------------
     memo_reuses = 0
@@ -278,11 +239,11 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         if memo is not None:
             u_prev[...] = memo
         else:
-            matvec(tau_p, u_prev)
+            it.matvec(tau_p, u_prev)
     if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
-        return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, 0, 0.0, True, force_mode, 0)
-    FP.start_traction(tau, tau_p if initial is None else initial, g, F / dA if force_mode else None,
-                      previous_region, region, u, axx, ayy)
+        return _finish(it, extra_slip, dA, 0.0)
+    FP.start_traction(tau, tau_p if initial is None else initial, g, it.f_cells, previous_region, region, u,
+                      it.axx, it.ayy)
     if same(tau, tau_p):
         u[...] = u_prev
     elif np.any(tau):
@@ -291,197 +252,16 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             u[...] = memo
             memo_reuses = max(memo_reuses, reuses)
         else:
-            matvec(tau, u)
+            it.matvec(tau, u)
     else:
         u[...] = 0.0
-    e = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
-    e_arr = w if e is None else e  # a placeholder of the right type when there is no extra slip
+    it.memo_reuses = memo_reuses
 
-    tol = params.tol
-    scale = a_self * gmax
-    gxx = gxy = gyy = 0.0  # Gram matrix of the force constraint (force mode, from K.gram_and_fit)
-    f_cells = F / dA if force_mode else None  # prescribed sum of tau over the elements (MPa)
-    restore_tol = 1e-15 * float(np.sum(g))
-    restart = True
-    synced = True
-    vq_prev = 1.0
-    rmax = math.inf
-    n_stick = n_slip = 0
-    release_ratio = math.inf  # release as soon as the multiplier says so (TangCG rule), see safeguard 1
-    exact = exact_after_sync = False  # see safeguard 2
-    tau_best, u_best = tau.copy(), u.copy()
-    stage = 0
-    best, best_at, released = math.inf, 0, 0
-    early_synced = False
-    steps = 0
-    while True:
-        # slip of the step for the current traction and division
-        n_stick, n_slip, *gram = K.classify(tau, g, region, nrm, u, u_prev, e_arr, e is not None, w)
-        for release_round in range(3):
-            if force_mode:
-                gxx, gxy, gyy, bx, by = gram if release_round == 0 else K.gram_and_fit(nrm, region, w)
-                det = gxx * gyy - gxy * gxy
-                if det > 1e-12 * (gxx + gyy) ** 2:
-                    dU[0] = (gyy * bx - gxy * by) / det
-                    dU[1] = (-gxy * bx + gxx * by) / det
-                elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
-                    tr = gxx + gyy
-                    dU[0], dU[1] = bx / tr, by / tr
-            rmax, snmax, rstop = K.residual(nrm, g, region, w, dU[0], dU[1], res, kappa, slip, axx, ayy)
-            # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
-            # back inside) only once the current face is solved better than that violation: releasing
-            # on a poor multiplier estimate makes the division cycle near the traction bound.
-            # (the last round only evaluates, so that the residual always describes the current state)
-            if snmax <= tol * scale or rmax > release_ratio * snmax or release_round == 2:
-                break
-            # A slip element whose slip points along its traction and exceeds what its own traction can undo
-            # over its whole range (|s| > 2 a_self g) must keep slipping: turn its traction against the slip
-            # instead of releasing it (released, its stick residual -s would be far outside its disc and the
-            # step that clips it back wrecked the iterate: f_t = 0.75 and 0.9 failed at 511^2). Only in the
-            # first round, before any release: the re-classification below derives the division afresh.
-            if release_round == 0:
-                synced = _turn_reversed(op, tau, nrm, g, region, w, dU, u, u_prev, e_arr, e is not None,
-                                        n_stick if force_mode else -1, ws, _FLIP_SLIP * a_self, matvec, synced,
-                                        f_cells, restore_tol, axx, ayy)[1]
-            released += K.release(nrm, region, w, dU[0], dU[1], 0.0)
-            restart = True
-        residual_rel = max(rstop, snmax) / scale
-        if not math.isfinite(residual_rel):
-            raise ConvergenceError("non-finite residual in the tangential solver", solver="tangential",
-                                   iterations=products, regime=_regime(force, capacity, region))
-        if synced and residual_rel < 0.5 * best:
-            best, best_at, released = residual_rel, products, 0
-            tau_best[...] = tau
-            u_best[...] = u
-        elif products - best_at > _STALL_PRODUCTS and stage < 2:
-            # Safeguard 1 (cycling of the division, f_t -> 1 on fine grids), when the best exact residual
-            # has not halved for _STALL_PRODUCTS products: first release a slip element only once the
-            # current face is solved better than its violation (BCCG's rule); if that stalls too, go
-            # back to the best exact iterate and continue from there with that rule.
-            stage += 1
-            release_ratio, best_at, restart = 1.0, products, True
-            if stage == 2:
-                tau[...] = tau_best
-                u[...] = u_best
-                synced = True
-                continue
-        if synced and exact_after_sync and residual_rel >= _SYNC_JUMP * tol:
-            # Safeguard 2: the exact re-synchronisation revealed that the self-coefficient updates of the
-            # renormalisations had drifted (dense slip areas on fine grids, where sum_J A_IJ ~ sqrt(N) a_self):
-            # keep u exact after every step from now on.
-            exact = True
-        exact_after_sync = False
-        if not (synced or early_synced) and residual_rel < _SYNC_EARLY * tol:
-            if force_mode and any(FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)):
-                restart = True  # the division changed: the recurrence is not kept
-            matvec(tau, u)  # early exact re-synchronisation; the CG recurrence is kept
-            synced = early_synced = True
-            memo_reuses = 0
-            continue
-        if residual_rel < tol:
-            if synced:
-                if force_mode and not np.any(region == 1):
-                    _stick_point_shift(w, g, region, dU, slip)
-                _memo.store(op, tau, u, memo_reuses)
-                return _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products,
-                               residual_rel, True, force_mode, steps)
-            if force_mode:
-                FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)
-            matvec(tau, u)  # re-synchronise u = A tau exactly before accepting
-            synced = True
-            exact_after_sync = True
-            memo_reuses = 0
-            restart = True
-            continue
-        if products >= params.max_iter:
-            raise ConvergenceError(
-                "tangential solver did not converge", solver="tangential (projected TangCG)",
-                iterations=products, residual=residual_rel, tol=tol,
-                regime=_regime(force, capacity, region))
-
-        # preconditioned, deflated residual: z = Pi (sum_l W_l P M_l P W_l r + D r) (solver._preconditioner)
-        rz, zq = precond.apply(nrm, region, kappa, axx, ayy, res, z, force_mode, (gxx, gxy, gyy), q)
-        if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
-            rz, zq = precond.apply(nrm, region, kappa, axx, ayy, res, z, force_mode, (gxx, gxy, gyy), q,
-                                   levels=False)
-            restart = True
-        if restart:
-            v[...] = z
-        else:
-            K.conjugate(z, v, -zq / vq_prev)
-        matvec(v, av)
-        steps += 1
-        vq, rv = K.curvature_product(nrm, region, kappa, v, av, q, res)
-        if vq <= 0.0 or rv <= 0.0:
-            if restart:
-                raise ConvergenceError("tangential solver: search direction is not a descent direction",
-                                       solver="tangential", iterations=products, residual=residual_rel,
-                                       tol=tol, regime=_regime(force, capacity, region))
-            restart = True
-            continue
-        alpha = rv / vq
-        n_clip, dmax, fsx, fsy, n_stick = K.step(tau, v, alpha, u, av, g, region, axx, ayy, _MAX_TURN)
-        restart = n_clip > 0
-        vq_prev = vq
-        synced = synced and dmax == 0.0
-        projected = False
-        # The renormalisation moved the force by second-order amounts. It is put back only where u is then
-        # recomputed exactly (here after a projection event, and before the early and final
-        # re-synchronisations). Restoring it after every step cost a re-synchronisation and a restart per step
-        # when no stick element is left (the rims must turn: f_t = 0.999, 43 -> 21 products at 217^2; other
-        # counts unchanged). In between, the iterate misses the force by the renormalisations since.
-        if force_mode and (n_clip > 0 or (exact and dmax > 0.0)):
-            if K.restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, restore_tol, fsx, fsy, n_stick):
-                # no stick element left to carry the force: turn the slip tractions (they stay on their rim)
-                FP.project_on_force(tau.copy(), g, f_cells, tau, region)
-                projected = restart = True  # a turn of every slip traction: not a local correction
-        if n_clip > 0 or projected or (exact and dmax > 0.0):
-            matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
-            synced = True
-            memo_reuses = 0
-
-
-def _turn_reversed(op, tau, nrm, g, region, w, dU, u, u_prev, e_arr, has_e, n_stick, ws, big, matvec, synced,
-                   f_cells, restore_tol, axx, ayy):
-    """Turn the slip tractions whose slip points along them and exceeds big g against their slip, with an exact
-    line search on the energy of the step. Made whole and all at once (a Jacobi step), the turns of neighbouring
-    edge elements interact: 67 turns raised the energy threefold and the solve cycled (profile step with
-    previous_region, Cattaneo 55^2: no convergence in 500 products; prescribed shift at 511^2: 129 products).
-    Along the turns d the energy is J(t) = J + t s.d + t^2 d.Ad/2, so t = min(1, -s.d/d.Ad) (t = 1 for a single
-    element: that is the threshold big = 2 a_self). At t = 1 the turned elements stay on their rim, below it
-    they lie inside their disc (stick). Up to _DENSE_TURNS turned elements d.Ad is summed from their dense
-    influence block and u is updated by the self coefficients (the force is then restored by the stick
-    elements as after any step); above it d is made force-neutral by a uniform shift of the stick elements
-    (n_stick > 0; n_stick < 0 for a prescribed shift) and one product A d gives the curvature and the exact
-    update of u. Re-classifies the iterate when anything moved. Returns (number of turned elements, synced)."""
-    d, ad = ws.d, ws.ad
-    n_turn, cx, cy = K.flip_direction(tau, nrm, g, region, w, dU[0], dU[1], big, d)
-    if n_turn == 0:
-        return 0, synced
-    dense = n_turn <= _DENSE_TURNS
-    if dense:
-        rows, cols = np.nonzero((d[0] != 0.0) | (d[1] != 0.0))
-        xx, xy, yy = op.tangential_block(rows, cols)
-        dx, dy = d[0, rows, cols], d[1, rows, cols]
-        curv = float(dx @ (xx @ dx + 2.0 * (xy @ dy)) + dy @ (yy @ dy))
-    else:
-        if n_stick > 0:
-            K.shift_stick(d, region, -cx / n_stick, -cy / n_stick)
-        matvec(d, ad)
-        curv = K.dot(d, ad)
-    descent = -K.slope(w, dU[0], dU[1], d, region)
-    if descent <= 0.0:
-        return 0, synced  # not a descent direction: the elements are released instead
-    t = 1.0 if curv <= descent else descent / curv
-    synced = synced and not dense and K.apply_flip(tau, d, t, u, ad, not dense, g, region, axx, ayy) == 0
-    if dense:
-        K.apply_flip(tau, d, t, u, ad, False, g, region, axx, ayy)
-    if f_cells is not None and (dense or n_stick == 0):  # the turns moved the force
-        if FP.restore_force(tau, region, g, f_cells, u, axx, ayy, restore_tol)[0]:
-            matvec(tau, u)  # the rims turned: not a local correction
-            synced = True
-    K.classify(tau, g, region, nrm, u, u_prev, e_arr, has_e, w)
-    return n_turn, synced
+    residual = it.run()
+    if force_mode and not np.any(region == 1):
+        _stick_point_shift(ws.w, g, region, dU, ws.slip)
+    _memo.store(op, tau, u, it.memo_reuses)
+    return _finish(it, extra_slip, dA, residual)
 
 
 def _stick_point_shift(w, g, region, dU, slip):
@@ -512,12 +292,12 @@ def _regime(force, capacity, region):
     return f"{ft}{n_stick} stick and {n_slip} slip elements"
 
 
-def _finish(op, tau, u, u_prev, extra_slip, dU, region, slip, dA, products, residual, converged, force_mode,
-            steps):
-    displacement = u.copy()
+def _finish(it, extra_slip, dA, residual):
+    ws = it.ws
+    displacement = ws.u.copy()
     if extra_slip is not None:
         displacement += np.asarray(extra_slip, dtype=float)
-    force = np.array([tau[0].sum(), tau[1].sum()]) * dA
-    return TangentialResult(traction=tau.copy(), shift_increment=dU.copy(), force=force, slip=slip.copy(),
-                            displacement=displacement, region=region.copy(), iterations=products,
-                            residual=float(residual), converged=converged, steps=steps)
+    force = np.array([ws.tau[0].sum(), ws.tau[1].sum()]) * dA
+    return TangentialResult(traction=ws.tau.copy(), shift_increment=it.dU.copy(), force=force,
+                            slip=ws.slip.copy(), displacement=displacement, region=ws.region.copy(),
+                            iterations=it.products, residual=float(residual), converged=True, steps=it.steps)

@@ -344,31 +344,23 @@ def test_turns_of_reversed_slips_never_raise_the_energy(scene):
     it) the energy falls, and the force is kept to round-off."""
     from solver import _force_projection as FP
     from solver import _tangential_kernels as K
-    from solver import tangential as T
+    from solver._tangcg import ProjectedTangCG
     first = scene.cattaneo(0.5)
     X, Y = scene.X, scene.Y
     g2 = MU * solve_normal(scene.op, (X ** 2 + (Y - scene.dx) ** 2) / (2 * R), force=FN).pressure
-    F = np.array([0.5 * MU * FN, 0.0])
-    f_cells = F / scene.grid.cell_area
-    shape = scene.grid.shape
-    ws = T._Workspace(shape)
-    tau, u, u_prev, w, region, nrm = ws.tau, ws.u, ws.u_prev, ws.w, ws.region, ws.nrm
-    FP.start_traction(tau, first.traction, g2, f_cells, first.region, region, u, 1.0, 1.0)
-    scene.op.tangential(tau[0], tau[1], out=u)
-    scene.op.tangential(first.traction[0], first.traction[1], out=u_prev)
-    n_stick, _, gxx, gxy, gyy, bx, by = K.classify(tau, g2, region, nrm, u, u_prev, w, False, w)
-    det = gxx * gyy - gxy * gxy
-    dU = np.array([(gyy * bx - gxy * by) / det, (-gxy * bx + gxx * by) / det])
-    axx, ayy = scene.op.self_coefficients["xx"], scene.op.self_coefficients["yy"]
-    a_self = max(axx, ayy)
-    before = _energy(scene.op, tau, first.traction)
-    n, _ = T._turn_reversed(scene.op, tau, nrm, g2, region, w, dU, u, u_prev, w, False, n_stick, ws,
-                            T._FLIP_SLIP * a_self, lambda f, out: scene.op.tangential(f[0], f[1], out=out), True,
-                            f_cells, 1e-15 * g2.sum(), axx, ayy)
-    assert n > 50
-    assert _energy(scene.op, tau, first.traction) < before
-    np.testing.assert_allclose(tau.sum(axis=(1, 2)), f_cells, rtol=0, atol=1e-12 * g2.sum())
-    assert np.all(np.hypot(*tau) <= g2 * (1 + 1e-12))
+    f_cells = np.array([0.5 * MU * FN, 0.0]) / scene.grid.cell_area
+    it = ProjectedTangCG(scene.op, g2, np.zeros(2), f_cells, None, TangentialParams(), str)
+    ws = it.ws
+    FP.start_traction(ws.tau, first.traction, g2, f_cells, first.region, ws.region, ws.u, 1.0, 1.0)
+    it.matvec(ws.tau, ws.u)
+    it.matvec(first.traction, ws.u_prev)
+    it.n_stick, _, *gram = K.classify(ws.tau, g2, ws.region, ws.nrm, ws.u, ws.u_prev, ws.w, False, ws.w)
+    it.fit_shift(*gram)
+    before = _energy(scene.op, ws.tau, first.traction)
+    assert it.turn_reversed() > 50
+    assert _energy(scene.op, ws.tau, first.traction) < before
+    np.testing.assert_allclose(ws.tau.sum(axis=(1, 2)), f_cells, rtol=0, atol=1e-12 * g2.sum())
+    assert np.all(np.hypot(*ws.tau) <= g2 * (1 + 1e-12))
 
 
 def test_profile_step_with_previous_region_converges_to_the_plain_solution(scene):

@@ -1,0 +1,291 @@
+"""The iteration of the tangential solver: projected TangCG on one step (the method, its choices and their
+measured effect are described in `solver.tangential`).
+
+`ProjectedTangCG` owns the buffers of one solve (`Workspace`) and the state of the iteration: the stick/slip
+division, the CG recurrence, the force constraint and its multiplier dU, the exact re-synchronisations of
+u = A tau, and the safeguards against cycling. One pass of `run` is
+
+    evaluate (division, shift fit, residual; releases and turns)  ->  safeguards  ->  re-synchronise or accept
+    ->  one preconditioned CG step (one product), with projection events.
+
+Units: tractions and bounds MPa, displacements and slips mm, forces as sums of tractions over the elements
+(MPa x elements).
+"""
+import math
+
+import numpy as np
+
+from bem.errors import ConvergenceError
+from . import _force_projection as FP
+from . import _preconditioner as PC
+from . import _tangential_kernels as K
+
+#: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
+MAX_TURN = 0.5
+#: A slip element whose slip points along its traction and exceeds FLIP_SLIP a_self g is turned against its
+#: slip rather than released to stick (`ProjectedTangCG.turn_reversed`).
+FLIP_SLIP = 2.0
+#: Up to this many turned elements the curvature of the turns comes from their dense influence block (k^2
+#: coefficients, about 0.1 ms for 100), above it from one product (`ProjectedTangCG.turn_reversed`).
+DENSE_TURNS = 256
+#: Safeguard 1: products without halving the best exact residual before releases become conservative.
+STALL_PRODUCTS = 30
+#: Safeguard 2: an exact re-synchronisation that finds the residual above SYNC_JUMP tol switches to exact u.
+SYNC_JUMP = 1e4
+#: One early exact re-synchronisation when the residual first falls below SYNC_EARLY tol: the drift of the
+#: self-coefficient updates made in the large early moves is then removed while the CG recurrence continues,
+#: so the final check usually passes at once (paper rolling: 26 -> 22 products per ratcheting step).
+SYNC_EARLY = 1e4
+
+
+class Workspace:
+    """Preallocated grid buffers of one solve (allocated once per call, reused by every iteration)."""
+
+    def __init__(self, shape):
+        ny, nx = shape
+        f2 = lambda: np.zeros((2, ny, nx))
+        self.tau, self.u, self.u_prev, self.w = f2(), f2(), f2(), f2()
+        self.res, self.z, self.v, self.av, self.q, self.slip = f2(), f2(), f2(), f2(), f2(), f2()
+        self.nrm = f2()  # unit direction of the slip tractions (written by K.classify)
+        self.d, self.ad = f2(), f2()  # direction of the turns of reversed slip tractions and its product
+        self.kappa = np.zeros((ny, nx))
+        self.region = np.zeros((ny, nx), np.int8)
+
+
+class ProjectedTangCG:
+    """One step's iteration on the bound g (MPa). dU (2,) mm is the shift increment: prescribed (f_cells None)
+    or the multiplier of the force constraint sum tau = f_cells (MPa x elements), written in place. extra: the
+    extra slip (2, ny, nx) mm or None. regime(region) describes the state for error messages.
+
+    The caller fills ws.u_prev = A tau', ws.tau (the start) and ws.u = A tau, counting its products with
+    `matvec`, then calls `run`."""
+
+    def __init__(self, op, g, dU, f_cells, extra, params, regime):
+        self.op, self.g, self.dU, self.f_cells, self.params, self.regime = op, g, dU, f_cells, params, regime
+        self.force_mode = f_cells is not None
+        self.ws = ws = Workspace(g.shape)
+        self.has_e = extra is not None
+        self.e_arr = ws.w if extra is None else extra  # a placeholder of the right type when there is none
+        self.axx, self.ayy = op.self_coefficients["xx"], op.self_coefficients["yy"]
+        self.a_self = max(self.axx, self.ayy)
+        self.scale = self.a_self * float(g.max())
+        self.restore_tol = 1e-15 * float(np.sum(g))
+        self.precond = PC.Preconditioner(op, g.shape, int(np.count_nonzero(g)))
+        self.products = 0  # op.tangential calls (the cost)
+        self.steps = 0  # CG search directions
+        self.memo_reuses = 0  # reuses of a memoised product behind u (see solver._memo)
+        self.gram = (0.0, 0.0, 0.0)  # Gram matrix of the force constraint (force mode)
+        self.n_stick = 0
+        self.restart, self.synced, self.vq_prev = True, True, 1.0
+        self.release_ratio = math.inf  # release as soon as the multiplier says so (TangCG rule), safeguard 1
+        self.exact = self.exact_after_sync = False  # safeguard 2
+        self.early_synced = False
+        self.best, self.best_at, self.stage = math.inf, 0, 0
+        self.tau_best = self.u_best = None
+
+    def matvec(self, field, out):
+        """out = A^tt field (one product, counted)."""
+        self.products += 1
+        self.op.tangential(field[0], field[1], out=out)
+
+    def run(self):
+        """Iterate until the exactly re-synchronised residual is below params.tol; returns it. The solution is
+        left in the workspace (tau, u, region, slip, w) and dU. Raises ConvergenceError beyond max_iter."""
+        ws, tol = self.ws, self.params.tol
+        self.tau_best, self.u_best = ws.tau.copy(), ws.u.copy()
+        while True:
+            r = self.evaluate()
+            if not math.isfinite(r):
+                raise ConvergenceError("non-finite residual in the tangential solver", solver="tangential",
+                                       iterations=self.products, regime=self.regime(ws.region))
+            if self.track_progress(r):
+                continue
+            if self.synced and self.exact_after_sync and r >= SYNC_JUMP * tol:
+                # Safeguard 2: the exact re-synchronisation revealed that the self-coefficient updates of the
+                # renormalisations had drifted (dense slip areas on fine grids, where sum_J A_IJ ~ sqrt(N)
+                # a_self): keep u exact after every step from now on.
+                self.exact = True
+            self.exact_after_sync = False
+            if not (self.synced or self.early_synced) and r < SYNC_EARLY * tol:
+                self.resync(early=True)
+                continue
+            if r < tol:
+                if self.synced:
+                    return r
+                self.resync(early=False)
+                continue
+            if self.products >= self.params.max_iter:
+                raise ConvergenceError(
+                    "tangential solver did not converge", solver="tangential (projected TangCG)",
+                    iterations=self.products, residual=r, tol=tol, regime=self.regime(ws.region))
+            self.cg_step(r)
+
+    def evaluate(self):
+        """Division, shift fit and residual of the current iterate, with up to two rounds of releases (and
+        turns of reversed slip tractions in the first). Returns the relative residual."""
+        ws, g, dU, tol = self.ws, self.g, self.dU, self.params.tol
+        self.n_stick, _, *gram = K.classify(ws.tau, g, ws.region, ws.nrm, ws.u, ws.u_prev, self.e_arr,
+                                            self.has_e, ws.w)
+        for release_round in range(3):
+            if self.force_mode:
+                self.fit_shift(*(gram if release_round == 0 else K.gram_and_fit(ws.nrm, ws.region, ws.w)))
+            rmax, snmax, rstop = K.residual(ws.nrm, g, ws.region, ws.w, dU[0], dU[1], ws.res, ws.kappa, ws.slip,
+                                            self.axx, self.ayy)
+            # Release slip elements whose slip points along the traction (s.n > 0: the traction must go
+            # back inside) only once the current face is solved better than that violation: releasing
+            # on a poor multiplier estimate makes the division cycle near the traction bound.
+            # (the last round only evaluates, so that the residual always describes the current state)
+            if snmax <= tol * self.scale or rmax > self.release_ratio * snmax or release_round == 2:
+                return max(rstop, snmax) / self.scale
+            # A slip element whose slip points along its traction and exceeds what its own traction can undo
+            # over its whole range (|s| > 2 a_self g) must keep slipping: turn its traction against the slip
+            # instead of releasing it (released, its stick residual -s would be far outside its disc and the
+            # step that clips it back wrecked the iterate: f_t = 0.75 and 0.9 failed at 511^2). Only in the
+            # first round, before any release: the re-classification derives the division afresh.
+            if release_round == 0:
+                self.turn_reversed()
+            K.release(ws.nrm, ws.region, ws.w, dU[0], dU[1], 0.0)
+            self.restart = True
+
+    def fit_shift(self, gxx, gxy, gyy, bx, by):
+        """dU = least-squares multiplier of the force constraint from the Gram sums of `K.gram_and_fit`."""
+        self.gram = (gxx, gxy, gyy)
+        dU = self.dU
+        det = gxx * gyy - gxy * gxy
+        if det > 1e-12 * (gxx + gyy) ** 2:
+            dU[0] = (gyy * bx - gxy * by) / det
+            dU[1] = (-gxy * bx + gxx * by) / det
+        elif gxx + gyy > 0:  # one free direction only (e.g. a single slip element)
+            tr = gxx + gyy
+            dU[0], dU[1] = bx / tr, by / tr
+
+    def track_progress(self, r):
+        """Safeguard 1 (cycling of the division, f_t -> 1 on fine grids). When the best exact residual has not
+        halved for STALL_PRODUCTS products: first release a slip element only once the current face is solved
+        better than its violation (BCCG's rule); if that stalls too, go back to the best exact iterate and
+        continue from there with that rule. Returns True when it went back."""
+        ws = self.ws
+        if self.synced and r < 0.5 * self.best:
+            self.best, self.best_at = r, self.products
+            self.tau_best[...] = ws.tau
+            self.u_best[...] = ws.u
+        elif self.products - self.best_at > STALL_PRODUCTS and self.stage < 2:
+            self.stage += 1
+            self.release_ratio, self.best_at, self.restart = 1.0, self.products, True
+            if self.stage == 2:
+                ws.tau[...] = self.tau_best
+                ws.u[...] = self.u_best
+                self.synced = True
+                return True
+        return False
+
+    def resync(self, early):
+        """Restore the force (force mode) and recompute u = A tau exactly. The early re-synchronisation keeps
+        the CG recurrence unless the restoration changed the division; the final one (before accepting)
+        restarts it and arms safeguard 2."""
+        ws = self.ws
+        changed = (False, False)
+        if self.force_mode:
+            changed = FP.restore_force(ws.tau, ws.region, self.g, self.f_cells, ws.u, self.axx, self.ayy,
+                                       self.restore_tol)
+        self.matvec(ws.tau, ws.u)
+        self.synced = True
+        self.memo_reuses = 0
+        if early:
+            self.early_synced = True
+            self.restart = self.restart or any(changed)
+        else:
+            self.exact_after_sync = self.restart = True
+
+    def cg_step(self, r):
+        """One preconditioned, deflated CG step (one product) on the current division, then back onto the
+        discs; projection events re-synchronise u and restart the recurrence."""
+        ws, g = self.ws, self.g
+        tau, u, region, v, av = ws.tau, ws.u, ws.region, ws.v, ws.av
+        # preconditioned, deflated residual: z = Pi (sum_l W_l P M_l P W_l r + D r) (solver._preconditioner)
+        args = (ws.nrm, region, ws.kappa, self.axx, self.ayy, ws.res, ws.z, self.force_mode, self.gram, ws.q)
+        rz, zq = self.precond.apply(*args)
+        if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
+            rz, zq = self.precond.apply(*args, levels=False)
+            self.restart = True
+        if self.restart:
+            v[...] = ws.z
+        else:
+            K.conjugate(ws.z, v, -zq / self.vq_prev)
+        self.matvec(v, av)
+        self.steps += 1
+        vq, rv = K.curvature_product(ws.nrm, region, ws.kappa, v, av, ws.q, ws.res)
+        if vq <= 0.0 or rv <= 0.0:
+            if self.restart:
+                raise ConvergenceError("tangential solver: search direction is not a descent direction",
+                                       solver="tangential", iterations=self.products, residual=r,
+                                       tol=self.params.tol, regime=self.regime(region))
+            self.restart = True
+            return
+        n_clip, dmax, fsx, fsy, self.n_stick = K.step(tau, v, rv / vq, u, av, g, region, self.axx, self.ayy,
+                                                      MAX_TURN)
+        self.restart = n_clip > 0
+        self.vq_prev = vq
+        self.synced = self.synced and dmax == 0.0
+        projected = False
+        # The renormalisation moved the force by second-order amounts. It is put back only where u is then
+        # recomputed exactly (here after a projection event, and before the early and final
+        # re-synchronisations). Restoring it after every step cost a re-synchronisation and a restart per step
+        # when no stick element is left (the rims must turn: f_t = 0.999, 43 -> 21 products at 217^2; other
+        # counts unchanged). In between, the iterate misses the force by the renormalisations since.
+        exact_step = self.exact and dmax > 0.0
+        if self.force_mode and (n_clip > 0 or exact_step):
+            f = self.f_cells
+            if K.restore_force(tau, region, g, f[0], f[1], u, self.axx, self.ayy, self.restore_tol, fsx, fsy,
+                               self.n_stick):
+                # no stick element left to carry the force: turn the slip tractions (they stay on their rim)
+                FP.project_on_force(tau.copy(), g, f, tau, region)
+                projected = self.restart = True  # a turn of every slip traction: not a local correction
+        if n_clip > 0 or projected or exact_step:
+            self.matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
+            self.synced = True
+            self.memo_reuses = 0
+
+    def turn_reversed(self):
+        """Turn the slip tractions whose slip points along them and exceeds FLIP_SLIP a_self g against their
+        slip, with an exact line search on the energy of the step. Made whole and all at once (a Jacobi step),
+        the turns of neighbouring edge elements interact: 67 turns raised the energy threefold and the solve
+        cycled (profile step with previous_region, Cattaneo 55^2: no convergence in 500 products; prescribed
+        shift at 511^2: 129 products). Along the turns d the energy is J(t) = J + t s.d + t^2 d.Ad/2, so
+        t = min(1, -s.d/d.Ad) (t = 1 for a single element: that is the threshold FLIP_SLIP = 2). At t = 1 the
+        turned elements stay on their rim, below it they lie inside their disc (stick).
+
+        Up to DENSE_TURNS turned elements d.Ad is summed from their dense influence block and u is updated by
+        the self coefficients (the force is then restored by the stick elements, as after any step); above it
+        d is made force-neutral by a uniform shift of the stick elements and one product A d gives the
+        curvature and the exact update of u. Re-classifies the iterate when anything moved. Returns the number
+        of turned elements."""
+        ws, g, dU, axx, ayy = self.ws, self.g, self.dU, self.axx, self.ayy
+        tau, u, region, d, ad = ws.tau, ws.u, ws.region, ws.d, ws.ad
+        n_turn, cx, cy = K.flip_direction(tau, ws.nrm, g, region, ws.w, dU[0], dU[1], FLIP_SLIP * self.a_self, d)
+        if n_turn == 0:
+            return 0
+        dense = n_turn <= DENSE_TURNS
+        n_stick = self.n_stick if self.force_mode else 0
+        if dense:
+            rows, cols = np.nonzero((d[0] != 0.0) | (d[1] != 0.0))
+            xx, xy, yy = self.op.tangential_block(rows, cols)
+            dx, dy = d[0, rows, cols], d[1, rows, cols]
+            curv = float(dx @ (xx @ dx + 2.0 * (xy @ dy)) + dy @ (yy @ dy))
+        else:
+            if n_stick > 0:
+                K.shift_stick(d, region, -cx / n_stick, -cy / n_stick)
+            self.matvec(d, ad)
+            curv = K.dot(d, ad)
+        descent = -K.slope(ws.w, dU[0], dU[1], d, region)
+        if descent <= 0.0:
+            return 0  # not a descent direction: the elements are released instead
+        t = 1.0 if curv <= descent else descent / curv
+        n_proj = K.apply_flip(tau, d, t, u, ad, not dense, g, region, axx, ayy)
+        self.synced = self.synced and not dense and n_proj == 0
+        if self.force_mode and (dense or n_stick == 0):  # the turns moved the force
+            if FP.restore_force(tau, region, g, self.f_cells, u, axx, ayy, self.restore_tol)[0]:
+                self.matvec(tau, u)  # the rims turned: not a local correction
+                self.synced = True
+        K.classify(tau, g, region, ws.nrm, u, ws.u_prev, self.e_arr, self.has_e, ws.w)
+        return n_turn
