@@ -193,15 +193,15 @@ def apply_flip(tau, d, t, u, ad, exact, g, region, axx, ayy):
     n_proj = 0
     for j in range(ny):
         for i in range(nx):
+            if exact:  # on the whole grid (see `step`)
+                u[0, j, i] += t * ad[0, j, i]
+                u[1, j, i] += t * ad[1, j, i]
             r = region[j, i]
             if r == 0:
                 continue
             dx = d[0, j, i]
             dy = d[1, j, i]
-            if exact:
-                u[0, j, i] += t * ad[0, j, i]
-                u[1, j, i] += t * ad[1, j, i]
-            else:
+            if not exact:
                 u[0, j, i] += t * axx * dx
                 u[1, j, i] += t * ayy * dy
             if dx == 0.0 and dy == 0.0:
@@ -369,11 +369,14 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
     n_stick = 0
     for j in range(ny):
         for i in range(nx):
+            # u = A tau on the whole grid, outside the contact too: the returned displacement and the product
+            # memo hand it to the next step, whose contact may cover these elements (a stale exterior made the
+            # next step converge to a wrong answer when no re-synchronisation happened, e.g. an all-stick step)
+            u[0, j, i] += alpha * av[0, j, i]
+            u[1, j, i] += alpha * av[1, j, i]
             r = region[j, i]
             if r == 0:
                 continue
-            u[0, j, i] += alpha * av[0, j, i]
-            u[1, j, i] += alpha * av[1, j, i]
             gi = g[j, i]
             ax = alpha * v[0, j, i]
             ay = alpha * v[1, j, i]

@@ -177,6 +177,46 @@ def test_near_traction_bound_shift_stays_accurate(scene):
         assert abs(res.shift_increment[0] / MINDLIN.shift(f_t) - 1) < 0.01
 
 
+def test_turned_load_without_stick_element_keeps_the_multiplier(scene):
+    """f_t = 0.98 along x, then along y (load turned by 90 degrees): no element is left in stick, but the slip
+    directions differ across the contact and pin the multiplier of the force constraint. The stick-point shift
+    (meant for nearly parallel slips, f_t -> 1 from zero traction) would turn part of the slip across the
+    traction (cosines up to -0.02) and move the shift by 0.14 mm; it must not be applied: the slip opposes the
+    traction everywhere (cos < -0.999) and a prescribed-shift solve at the returned shift gives back the same
+    traction and force (the step is a convex program with a unique solution)."""
+    capacity = traction_capacity(scene.bound, scene.grid)
+    first = scene.cattaneo(0.98)
+    F = (0.0, 0.98 * capacity)
+    res = solve_tangential(scene.op, scene.bound, first.traction, force=F)
+    assert not np.any(res.region == 1)
+    check_invariants(res, scene.bound, scene.grid, force=F, alignment=0.999)
+    back = solve_tangential(scene.op, scene.bound, first.traction, shift=tuple(res.shift_increment))
+    np.testing.assert_allclose(back.traction, res.traction, rtol=0, atol=1e-6 * scene.bound.max())
+    np.testing.assert_allclose(back.force, F, rtol=0, atol=1e-6 * capacity)
+
+
+def test_displacement_is_exact_outside_the_contact_and_the_next_step_uses_it(scene):
+    """A small unloading (f_t 0.5 -> 0.49) ends with every element in stick. The returned displacement must be
+    A tau on the whole grid, outside the contact too: it is handed to the next step (memo, previous_displacement),
+    whose contact may cover those elements. Before the fix the exterior kept the start's product (error 4e-2
+    a_self max g) and the next step on the contact moved by one cell converged to a traction off by 4e-2 max g.
+    Checked against the FFT product to round-off, and the next step against one with the memo cleared."""
+    from solver import tangential as T
+    first = scene.cattaneo(0.5)
+    F = (0.49 * MU * FN, 0.0)
+    unload = solve_tangential(scene.op, scene.bound, first.traction, force=F)
+    assert not np.any(unload.region == 2)
+    exact = scene.op.tangential(unload.traction[0], unload.traction[1])
+    a_self = max(scene.op.self_coefficients.values())
+    assert np.abs(unload.displacement - exact).max() < 1e-12 * a_self * scene.bound.max()
+    X, Y = scene.X, scene.Y
+    g2 = MU * solve_normal(scene.op, (X ** 2 + (Y - scene.dx) ** 2) / (2 * R), force=FN).pressure
+    nxt = solve_tangential(scene.op, g2, unload.traction, force=F)
+    T._memo.clear()
+    clean = solve_tangential(scene.op, g2, unload.traction, force=F)
+    np.testing.assert_allclose(nxt.traction, clean.traction, rtol=0, atol=1e-7 * g2.max())
+
+
 def test_iteration_budget_exhausted_raises_with_regime(scene):
     """A budget that is too small raises ConvergenceError naming f_t and the stick-element count (no silent
     return, no NaN)."""
