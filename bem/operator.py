@@ -326,6 +326,16 @@ class HalfSpaceOperator:
         return {c: np.ascontiguousarray(inv[..., i, j]) for c, (i, j) in
                 (("xx", (0, 0)), ("yy", (1, 1)), ("xy", (0, 1)))}
 
+    def tangential_norm(self):
+        """Largest eigenvalue of the padded circulant of A^tt (mm/MPa), an upper bound of the 2-norm of A^tt on the
+        grid (A^tt is a principal submatrix of that circulant): the Lipschitz constant of the tangential energy's
+        gradient, for gradient steps. Computed once from the symbols."""
+        if getattr(self, "_tangential_norm", None) is None:
+            n = self.padded[0] * self.padded[1]  # the stored spectra carry the 1/N of the inverse FFT
+            xx, xy, yy = (self._real_symbols[c] * n for c in ("xx", "xy", "yy"))
+            self._tangential_norm = float(np.max(0.5 * (xx + yy) + np.sqrt((0.5 * (xx - yy)) ** 2 + xy ** 2)))
+        return self._tangential_norm
+
     def tangential_block(self, rows, cols):
         """Dense A^tt among k elements given by their row (y) and column (x) indices: the (k, k) arrays
         (xx, xy, yy) in mm/MPa, entry [a, b] the displacement at element a from a unit traction on element b.

@@ -43,9 +43,8 @@ After each CG step, stick elements that leave their disc are projected radially 
 (many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
 traction (s.n > 0) are released to stick (or, when that slip exceeds 2 a_self g, more than the element's
 own traction can undo over its whole range, their traction is turned against the slip, by the step that
-minimises the energy along the turns (`_tangcg.ProjectedTangCG.turn_reversed`): released, their stick residual would be far outside
-the disc), slip elements are renormalised to
-|tau| = g, and the force is restored by a uniform shift of the stick tractions wherever u is then
+minimises the energy along the turns (`_tangcg.ProjectedTangCG.turn_reversed`): released, their stick
+residual would be far outside the disc), slip elements are renormalised to |tau| = g, and the force is restored by a uniform shift of the stick tractions wherever u is then
 recomputed exactly; the CG recurrence restarts after any change of the division. The projected gradient
 method (theory §5.5) is simpler but needs thousands of products on these problems; Gauss-Seidel (§5.3) is
 sequential and grows with the grid.
@@ -67,13 +66,16 @@ inside their discs, into stick, and the division would collapse: f_t = 0.999 fai
 first, hard-threshold form of the slip preconditioner), and the CG recurrence restarts; when no element is
 left in stick (stick zone below one element, f_t -> 1), the reported dU is the displacement of the
 sub-element stick point (see `_stick_point_shift`).
-Cycling safeguard: a cold solve close to the bound on fine grids (217^2, f_t >= 0.95) used to cycle between
-release and projection. When the best exact residual has not halved for STALL_PRODUCTS products, releases
-become conservative (only once the face residual is below the violation); if that stalls too, the iteration
-returns to the best exact iterate. When an exact re-synchronisation finds the residual far above the
-tolerance (drift of the self-coefficient updates on dense slip areas), u is kept exact from then on. One
-early re-synchronisation, when the residual first falls below SYNC_EARLY tol, removes the drift of the large
-early moves without restarting the recurrence, so that the final check rarely fails.
+Cycling safeguard: the active-set iteration is not monotone in the energy (projection events, releases), and
+it can cycle: cold solves close to the bound on fine grids, and warm starts far from a load turned near the bound
+(from f_t = 0.75 along x to 0.99 turned by 1 rad: no convergence in 3000 products). When the best exact
+residual has not halved for STALL_PRODUCTS products, GRADIENT_PRODUCTS steps of the accelerated projected
+gradient method (theory §5.5; monotone in the energy, so it leaves any cycle) run from the best exact iterate,
+and CG resumes from there (`_tangcg.ProjectedTangCG.gradient_phase`; that case now 70 products). When an
+exact re-synchronisation finds the residual far above the tolerance (drift of the self-coefficient updates on
+dense slip areas), u is kept exact from then on. One early re-synchronisation, when the residual first falls
+below SYNC_EARLY tol, removes the drift of the large early moves without restarting the recurrence, so that the
+final check rarely fails.
 Product memo: A tau' is taken from the previous solve when tau' is its traction (rolling), see
 `previous_displacement`.
 
