@@ -44,9 +44,10 @@ After each CG step, stick elements that leave their disc are projected radially 
 traction (s.n > 0) are released to stick (or, when that slip exceeds 2 a_self g, more than the element's
 own traction can undo over its whole range, their traction is turned against the slip, by the step that
 minimises the energy along the turns (`_tangcg.ProjectedTangCG.turn_reversed`): released, their stick
-residual would be far outside the disc), slip elements are renormalised to |tau| = g, and the force is restored by a uniform shift of the stick tractions wherever u is then
-recomputed exactly; the CG recurrence restarts after any change of the division. The projected gradient
-method (theory §5.5) is simpler but needs thousands of products on these problems; Gauss-Seidel (§5.3) is
+residual would be far outside the disc), slip elements are renormalised to |tau| = g, and the force is
+restored by a uniform shift of the stick tractions wherever u is then recomputed exactly; the CG recurrence
+restarts after any change of the division. The projected gradient method (theory §5.5) is simpler but needs
+thousands of products on these problems (it serves only as the cycling safeguard below); Gauss-Seidel (§5.3) is
 sequential and grows with the grid.
 
 Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
