@@ -140,9 +140,12 @@ def violations(sc, r, g, force):
     if np.any(smag[region == 1] > slip_tol):
         out.append("slip in stick")
     big = (region == 2) & (smag > 100 * slip_tol)
-    # with at most one stick element the shift may be the sub-element stick point's (solver.tangential
-    # ._stick_point_shift), which keeps the resolved slips within 8 degrees of -tau
-    align = 0.99 if np.count_nonzero(region == 1) <= 1 else 0.999
+    align = 0.999
+    if np.count_nonzero(region == 1) <= 1:
+        # the shift may be the sub-element stick point's (solver.tangential._stick_point_shift), which keeps the
+        # resolved slips (above STICK_POINT_RESOLVED of the largest) within acos(STICK_POINT_ALIGN) of -tau
+        big &= smag > T.STICK_POINT_RESOLVED * smag[region == 2].max(initial=0.0)
+        align = T.STICK_POINT_ALIGN
     if np.any(big) and np.max((tau[0] * slip[0] + tau[1] * slip[1])[big] / (mag * smag)[big]) > -align:
         out.append("slip not opposite traction")
     exact = sc.op.tangential(tau[0], tau[1])
