@@ -26,7 +26,7 @@ import numpy as np
 UNITS = {
     "step": "-", "period": "-", "approach": "mm", "Fn": "N", "contact_area": "mm^2", "iterations": "-",
     "residual": "-", "U_x": "mm", "U_y": "mm", "F_x": "N", "F_y": "N", "stick_area": "mm^2",
-    "W_x": "mm", "W_y": "mm", "normal_iterations": "-", "tangential_iterations": "-",
+    "W_x": "mm", "W_y": "mm", "normal_iterations": "-", "tangential_iterations": "-", "outer_iterations": "-",
     "p": "MPa", "u_z": "mm", "tau_x": "MPa", "tau_y": "MPa", "slip_x": "mm", "slip_y": "mm",
     "u_x": "mm", "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip", "x": "mm", "y": "mm",
     "wall_time": "s",

@@ -376,6 +376,16 @@ def _toml_value(v) -> str:
     return str(v)
 
 
+def key_unit(key: str) -> str:
+    """Unit of a scene key 'section.name' as written in HDF5 `units` attributes ('-': dimensionless or
+    not a quantity; also for a key that is not a scene key)."""
+    sec, _, name = key.partition(".")
+    for f in fields(SECTIONS[sec]) if sec in SECTIONS else ():
+        if f.name == name:
+            return f.metadata.get("unit") or "-"
+    return "-"
+
+
 DEFAULT_SCENE_FILE = "paper_perpendicular.toml"
 
 
