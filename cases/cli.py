@@ -8,7 +8,7 @@ import argparse
 from pathlib import Path
 import sys
 
-from bem.errors import RollcontactError, SceneError
+from bem.errors import InputError, RollcontactError, SceneError
 
 from .scene import Scene, default_scene
 
@@ -28,18 +28,27 @@ def _add_run(sub):
 
 
 def _run(args) -> int:
-    from .run import format_summary, load_state, print_progress, run_scene
-    restart = history = None
+    from .outputs import check_output
+    from .restart import load_restart
+    from .run import format_summary, print_progress, run_scene
+    source = None
+    if args.step is not None and not args.restart:
+        raise InputError(f"--step {args.step}: applies only with --restart RUN.h5 (the stored step to continue "
+                         "from); to run a scene from the start, leave --step out")
     if args.restart:
-        scene, restart, history = load_state(args.restart, args.step)
         if args.scene:
             raise SceneError("give either a scene file or --restart, not both")
+        source = load_restart(args.restart, args.step)
+        scene = source.scene
     else:
         scene = Scene.from_toml(args.scene) if args.scene else default_scene()
     if args.overrides:
         scene = scene.with_overrides(args.overrides)
-    out = Path(args.output) if args.output else Path("results") / f"{scene.name}.h5"
+    out = check_output(args.output if args.output else Path("results") / f"{scene.name}.h5")
     progress = None if args.quiet else print_progress
+    restart = history = None
+    if source is not None:
+        restart, history = source.state, source.data.history
     outcome = run_scene(scene, out, progress=progress, restart=restart, restart_history=history)
     print(format_summary(outcome))
     return 0 if outcome.data.status == "complete" else 1

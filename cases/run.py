@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from bem.errors import GrossSlidingError, InputError, RollcontactError
+from bem.errors import GrossSlidingError, RollcontactError
 from bem.grid import Grid, contact_box
 from bem.operator import HalfSpaceOperator
 from solver.analytic import CattaneoMindlin, HertzSphere
@@ -25,7 +25,7 @@ from solver.shakedown import classify
 from solver.stepping import LoadPath, StepParams, StepState, build_path, run_path
 from solver.tangential import TangentialParams
 
-from .hdf5 import RunData, read_run, version, write_run
+from .hdf5 import RunData, version, write_run
 from .scene import Scene
 
 HISTORY_NAMES = ("step", "period", "W_x", "W_y", "approach", "Fn", "contact_area", "stick_area", "U_x",
@@ -95,7 +95,7 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
     """Run `scene` and write the results to `out` (HDF5). Returns the outcome (also on failure).
 
     progress: callable(message) for progress lines (None: silent). restart / restart_history: continue
-    from a stored step (see `load_state`). A scene that cannot be discretised (grid over the element
+    from a stored step (see cases.restart). A scene that cannot be discretised (grid over the element
     limit) raises InputError before anything is computed or written; a failure during the run writes the
     finished steps with status 'failed'.
     """
@@ -209,25 +209,6 @@ def _write(scene, out, grid, history, fields, stored, status, error, summary) ->
                    summary=summary, version=version())
     write_run(out, data)
     return data
-
-
-def load_state(path, step: int | None = None) -> tuple[Scene, StepState, dict]:
-    """Scene, StepState and history of a stored run at `step` (default: the last stored field step)."""
-    data = read_run(path)
-    scene = Scene.from_toml_text(data.scene_toml, name=Path(path).stem)
-    steps = list(np.asarray(data.field_steps))
-    if not steps:
-        raise InputError(f"{path}: stores no fields, so no step can be continued from")
-    step = steps[-1] if step is None else int(step)
-    if step not in steps:
-        raise InputError(f"{path}: fields of step {step} were not stored; stored steps: {steps}")
-    i = steps.index(step)
-    h = data.history
-    k = int(np.flatnonzero(np.asarray(h["step"]) == step)[0])
-    state = StepState(step, data.fields["p"][i].copy(),
-                      np.stack([data.fields["tau_x"][i], data.fields["tau_y"][i]]).copy(),
-                      np.array([h["U_x"][k], h["U_y"][k]], dtype=float), float(h["approach"][k]))
-    return scene, state, h
 
 
 def print_progress(message: str):
