@@ -87,7 +87,7 @@ def read_point(path) -> Point:
         attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5["summary"].attrs.items()}
         text = h5.attrs["scene"]
         text = text.decode() if isinstance(text, bytes) else str(text)
-    scene = Scene.from_toml_text(text, name=Path(path).stem)
+    scene = Scene.from_toml_text(text, name=Path(path).stem, run_limits=False)
     f_t = _num(attrs.get("f_t"))
     return Point(file=Path(path).name, f_t=scene.f_t if f_t is None else f_t, w=_num(attrs.get("w")) or 0.0,
                  angle=_fold(scene.motion.angle),
@@ -144,7 +144,8 @@ def _base_angle(folder: Path):
     try:
         with h5py.File(folder / "limits.h5", "r") as h5:
             text = h5.attrs["base_scene"]
-        return _fold(Scene.from_toml_text(text.decode() if isinstance(text, bytes) else str(text)).motion.angle)
+        return _fold(Scene.from_toml_text(text.decode() if isinstance(text, bytes) else str(text),
+                                           run_limits=False).motion.angle)
     except (OSError, KeyError, ValueError):
         return None
 
