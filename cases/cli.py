@@ -29,7 +29,7 @@ def _add_run(sub):
 
 def _run(args) -> int:
     from .outputs import check_output
-    from .restart import load_restart
+    from .restart import continued_scene, load_restart
     from .run import format_summary, print_progress, run_scene
     source = None
     if args.step is not None and not args.restart:
@@ -39,17 +39,25 @@ def _run(args) -> int:
         if args.scene:
             raise SceneError("give either a scene file or --restart, not both")
         source = load_restart(args.restart, args.step)
-        scene = source.scene
+        scene = continued_scene(source, args.overrides)
     else:
         scene = Scene.from_toml(args.scene) if args.scene else default_scene()
-    if args.overrides:
-        scene = scene.with_overrides(args.overrides)
+        if args.overrides:
+            scene = scene.with_overrides(args.overrides)
     out = check_output(args.output if args.output else Path("results") / f"{scene.name}.h5")
     progress = None if args.quiet else print_progress
-    restart = history = None
-    if source is not None:
-        restart, history = source.state, source.data.history
-    outcome = run_scene(scene, out, progress=progress, restart=restart, restart_history=history)
+    if source is None:
+        outcome = run_scene(scene, out, progress=progress)
+    else:
+        if out.resolve() == source.path.resolve():
+            raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace "
+                             "its later steps; write to another file")
+        if progress:
+            progress(f"continuing {source.path} from step {source.step} (period {source.period})")
+        outcome = run_scene(scene, out, progress=progress, restart=source.state,
+                            restart_history=source.data.history, restart_snapshots=source.snapshots(),
+                            attrs=dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
+                                       restart_overrides=list(args.overrides) or [""]))
     print(format_summary(outcome))
     return 0 if outcome.data.status == "complete" else 1
 

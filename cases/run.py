@@ -91,11 +91,13 @@ def field_steps(scene: Scene, path: LoadPath) -> np.ndarray:
 
 
 def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = None,
-              restart_history: dict | None = None) -> RunOutcome:
+              restart_history: dict | None = None, restart_snapshots: tuple | None = None,
+              attrs: dict | None = None) -> RunOutcome:
     """Run `scene` and write the results to `out` (HDF5). Returns the outcome (also on failure).
 
     progress: callable(message) for progress lines (None: silent). restart / restart_history: continue
-    from a stored step (see cases.restart). A scene that cannot be discretised (grid over the element
+    from a stored step (see cases.restart); restart_snapshots = (steps, fields): the stored snapshots up to
+    it, written into the new file too; attrs: further root attributes of the file. A scene that cannot be discretised (grid over the element
     limit) raises InputError before anything is computed or written; a failure during the run writes the
     finished steps with status 'failed'.
     """
@@ -120,6 +122,9 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
             history[k] = list(np.asarray(restart_history[k])[: restart.step + 1])
     fields = {k: [] for k in FIELD_NAMES}
     stored = []
+    if restart_snapshots:
+        stored = [int(s) for s in restart_snapshots[0]]
+        fields = {k: list(restart_snapshots[1][k]) for k in FIELD_NAMES}
     status, error, state_label = "complete", "", None
     dA = grid.cell_area
     if progress:
@@ -155,11 +160,11 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
         status = "failed"
         error = "interrupted by the user" if isinstance(exc, KeyboardInterrupt) else f"{type(exc).__name__}: {exc}"
         if isinstance(exc, KeyboardInterrupt):
-            _write(scene, out, grid, history, fields, stored, status, error, {})
+            _write(scene, out, grid, history, fields, stored, status, error, {}, attrs)
             raise
     wall = time.perf_counter() - t_start
     summary = summarise(scene, path, history, state_label, grid, wall)
-    data = _write(scene, out, grid, history, fields, stored, status, error, summary)
+    data = _write(scene, out, grid, history, fields, stored, status, error, summary, attrs)
     return RunOutcome(Path(out), data, wall)
 
 
@@ -196,7 +201,7 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     return {k: v for k, v in summary.items()}
 
 
-def _write(scene, out, grid, history, fields, stored, status, error, summary) -> RunData:
+def _write(scene, out, grid, history, fields, stored, status, error, summary, attrs=None) -> RunData:
     n = len(stored)
     ny, nx = grid.shape
     flds = {}
@@ -206,7 +211,7 @@ def _write(scene, out, grid, history, fields, stored, status, error, summary) ->
     hist = {k: np.asarray(v) for k, v in history.items()}
     data = RunData(scene_toml=scene.to_toml(), status=status, error=error, x=grid.x, y=grid.y,
                    history=hist, fields=flds, field_steps=np.array(stored, dtype=np.int64),
-                   summary=summary, version=version())
+                   summary=summary, version=version(), attrs=dict(attrs or {}))
     write_run(out, data)
     return data
 
