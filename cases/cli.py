@@ -5,7 +5,6 @@ Exit codes: 0 success, 1 the run failed (its partial results are still written),
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 import sys
 
 from bem.errors import InputError, RollcontactError, SceneError
@@ -17,7 +16,8 @@ def _add_run(sub):
     p = sub.add_parser("run", help="run one scene (default: the seed paper's perpendicular scene)",
                        description="Run one scene and write its results to HDF5. Units: mm, N, MPa.")
     p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded paper scene)")
-    p.add_argument("-o", "--output", help="output HDF5 file (default: results/<scene name>.h5)")
+    p.add_argument("-o", "--output", help="output HDF5 file (default: results/<scene name>.h5; with --set or "
+                   "--restart, results/<scene name>[__from_step<N>]__<key=value>....h5)")
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override a scene key, e.g. --set load.ft=0.77 (repeatable)")
     p.add_argument("--restart", metavar="RUN.h5",
@@ -28,7 +28,7 @@ def _add_run(sub):
 
 
 def _run(args) -> int:
-    from .outputs import check_output
+    from .outputs import check_output, default_output
     from .restart import continued_scene, load_restart
     from .run import format_summary, print_progress, run_scene
     source = None
@@ -44,8 +44,14 @@ def _run(args) -> int:
         scene = Scene.from_toml(args.scene) if args.scene else default_scene()
         if args.overrides:
             scene = scene.with_overrides(args.overrides)
-    out = check_output(args.output if args.output else Path("results") / f"{scene.name}.h5")
     progress = None if args.quiet else print_progress
+    if args.output:
+        out = check_output(args.output)
+    else:
+        out = check_output(default_output(scene.name, args.overrides, source.step if source else None))
+        if progress and (args.overrides or source):
+            progress(f"no -o given: writing to {out} (named after the scene, the restart step and the --set "
+                     "overrides, so the plain scene's file is not overwritten)")
     if source is None:
         outcome = run_scene(scene, out, progress=progress)
     else:
