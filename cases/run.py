@@ -164,6 +164,8 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
             raise
     wall = time.perf_counter() - t_start
     summary = summarise(scene, path, history, state_label, grid, wall)
+    if state_label == "gross_sliding":   # the step that found no equilibrium; the solver's message
+        summary.update(stopped_at_step=len(history["step"]), state_message=error)
     data = _write(scene, out, grid, history, fields, stored, status, error, summary, attrs)
     return RunOutcome(Path(out), data, wall)
 
@@ -241,7 +243,12 @@ def format_summary(outcome: RunOutcome) -> str:
         lines.append(f"f_t = {s['f_t']:.4g}: U_stat = {s['U_stat']:.6f} mm, u_stat = {s['u_stat']:.5f}")
     state = s.get("state", "?")
     line = f"state: {state}"
-    if state == "shakedown":
+    if state == "gross_sliding" and "stopped_at_step" in s:
+        line += (f" at step {s['stopped_at_step']} (of {s['steps_planned']} planned): {s.get('state_message', '')}"
+                 "\ngross sliding: the tangential force reached the friction capacity mu Fn (f_t = Ft/(mu Fn) = "
+                 f"{s['f_t']:.4g}), so no static equilibrium exists and the run stopped there; this is a result "
+                 "(status complete), the steps before it are written")
+    elif state == "shakedown":
         line += (f" after {s['periods_to_shakedown']} period(s); U_sd = {s['U_sd']:.6f} mm, "
                  f"u_sd = {s['u_sd']:.5f} (w = {s['w']:.4g})")
     elif state in ("ratcheting", "undecided"):

@@ -89,3 +89,16 @@ def test_ill_posed_rolling_scenes_are_refused_before_any_work(tmp_path, capsys, 
     err = capsys.readouterr().err
     assert re.search(message, err), err
     assert not (tmp_path / "z.h5").exists()
+
+
+def test_gross_sliding_is_a_result_the_cli_states_clearly_and_the_file_records(tmp_path, capsys):
+    """f_t = 1 is inside the scene's range [0, 1]; Ft = mu Fn has no static equilibrium (gross sliding)."""
+    out = tmp_path / "gs.h5"
+    assert main(["run", "-q", "-o", str(out), *COARSE, "--set", "load.ft=1"]) == 0
+    text = capsys.readouterr().out
+    assert "state: gross_sliding at step 1 (of 26 planned)" in text
+    assert "gross sliding: the tangential force reached the friction capacity" in text
+    assert "reaches the friction capacity mu Fn" in text                   # the solver's own message
+    d = read_run(out)
+    assert d.status == "complete" and d.summary["state"] == "gross_sliding"
+    assert d.summary["stopped_at_step"] == 1 and "friction capacity" in d.summary["state_message"]
