@@ -97,9 +97,9 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
 
     progress: callable(message) for progress lines (None: silent). restart / restart_history: continue
     from a stored step (see cases.restart); restart_snapshots = (steps, fields): the stored snapshots up to
-    it, written into the new file too; attrs: further root attributes of the file. A scene that cannot be discretised (grid over the element
-    limit) raises InputError before anything is computed or written; a failure during the run writes the
-    finished steps with status 'failed'.
+    it, written into the new file too; attrs: further root attributes of the file. A scene that cannot be
+    discretised (grid over the element limit) raises InputError before anything is computed or written; a
+    failure during the run writes the finished steps with status 'failed'.
     """
     if scene.solver.fidelity == "mdr":
         from .run_mdr import run_scene_mdr
