@@ -12,8 +12,9 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
 
-A key left out takes its neutral default (no tangential load, no motion), so a scene file states only
-what its scene needs. Unknown keys, wrong types and out-of-range values raise `SceneError` naming the
+A key left out takes its default (the field specs below): the seed paper's materials, Fn, mu and rolling
+angle, but no tangential load and no motion; only [geometry] is required. So a scene file states only what
+its scene needs (the README's scene-key table lists the defaults). Unknown keys, wrong types and out-of-range values raise `SceneError` naming the
 key, the value and the allowed range.
 """
 from __future__ import annotations
