@@ -5,10 +5,9 @@ Exit codes: 0 success, 1 the run failed (its partial results are still written),
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 import sys
 
-from bem.errors import RollcontactError, SceneError
+from bem.errors import InputError, RollcontactError, SceneError
 
 from .scene import Scene, default_scene
 
@@ -17,7 +16,8 @@ def _add_run(sub):
     p = sub.add_parser("run", help="run one scene (default: the seed paper's perpendicular scene)",
                        description="Run one scene and write its results to HDF5. Units: mm, N, MPa.")
     p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded paper scene)")
-    p.add_argument("-o", "--output", help="output HDF5 file (default: results/<scene name>.h5)")
+    p.add_argument("-o", "--output", help="output HDF5 file (default: results/<scene name>.h5; with --set or "
+                   "--restart, results/<scene name>[__from_step<N>]__<key=value>....h5)")
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override a scene key, e.g. --set load.ft=0.77 (repeatable)")
     p.add_argument("--restart", metavar="RUN.h5",
@@ -28,19 +28,42 @@ def _add_run(sub):
 
 
 def _run(args) -> int:
-    from .run import format_summary, load_state, print_progress, run_scene
-    restart = history = None
+    from .outputs import check_output, default_output
+    from .restart import continued_scene, load_restart
+    from .run import format_summary, print_progress, run_scene
+    source = None
+    if args.step is not None and not args.restart:
+        raise InputError(f"--step {args.step}: applies only with --restart RUN.h5 (the stored step to continue "
+                         "from); to run a scene from the start, leave --step out")
     if args.restart:
-        scene, restart, history = load_state(args.restart, args.step)
         if args.scene:
             raise SceneError("give either a scene file or --restart, not both")
+        source = load_restart(args.restart, args.step)
+        scene = continued_scene(source, args.overrides)
     else:
         scene = Scene.from_toml(args.scene) if args.scene else default_scene()
-    if args.overrides:
-        scene = scene.with_overrides(args.overrides)
-    out = Path(args.output) if args.output else Path("results") / f"{scene.name}.h5"
+        if args.overrides:
+            scene = scene.with_overrides(args.overrides)
     progress = None if args.quiet else print_progress
-    outcome = run_scene(scene, out, progress=progress, restart=restart, restart_history=history)
+    if args.output:
+        out = check_output(args.output)
+    else:
+        out = check_output(default_output(scene.name, args.overrides, source.step if source else None))
+        if progress and (args.overrides or source):
+            progress(f"no -o given: writing to {out} (named after the scene, the restart step and the --set "
+                     "overrides, so the plain scene's file is not overwritten)")
+    if source is None:
+        outcome = run_scene(scene, out, progress=progress)
+    else:
+        if out.resolve() == source.path.resolve():
+            raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace "
+                             "its later steps; write to another file")
+        if progress:
+            progress(f"continuing {source.path} from step {source.step} (period {source.period})")
+        outcome = run_scene(scene, out, progress=progress, restart=source.state,
+                            restart_history=source.data.history, restart_snapshots=source.snapshots(),
+                            attrs=dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
+                                       restart_overrides=list(args.overrides) or [""]))
     print(format_summary(outcome))
     return 0 if outcome.data.status == "complete" else 1
 

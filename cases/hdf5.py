@@ -3,7 +3,8 @@
 Layout (public contract; later versions add to it, never rename):
 
     /                   attrs: rollcontact_version, scene (full scene as TOML text), status
-                        ('complete' or 'failed'), error (message, when failed)
+                        ('complete' or 'failed'), error (message, when failed); a restarted run also
+                        restarted_from (source file), restart_step, restart_overrides (the --set items)
     /grid/x, /grid/y    cell-centre coordinates (mm)
     /history/<name>     one value per step (see README for names and units)
     /fields/<name>      shape (snapshots, ny, nx); /fields/step says which steps were stored
@@ -26,7 +27,7 @@ import numpy as np
 UNITS = {
     "step": "-", "period": "-", "approach": "mm", "Fn": "N", "contact_area": "mm^2", "iterations": "-",
     "residual": "-", "U_x": "mm", "U_y": "mm", "F_x": "N", "F_y": "N", "stick_area": "mm^2",
-    "W_x": "mm", "W_y": "mm", "normal_iterations": "-", "tangential_iterations": "-",
+    "W_x": "mm", "W_y": "mm", "normal_iterations": "-", "tangential_iterations": "-", "outer_iterations": "-",
     "p": "MPa", "u_z": "mm", "tau_x": "MPa", "tau_y": "MPa", "slip_x": "mm", "slip_y": "mm",
     "u_x": "mm", "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip", "x": "mm", "y": "mm",
     "wall_time": "s",
@@ -54,6 +55,7 @@ class RunData:
     summary: dict = field(default_factory=dict)
     error: str = ""
     version: str = ""
+    attrs: dict = field(default_factory=dict)   # further root attributes (restarted_from, restart_step, ...)
 
 
 def write_run(path, data: RunData) -> Path:
@@ -67,6 +69,8 @@ def write_run(path, data: RunData) -> Path:
             h5.attrs["scene"] = data.scene_toml
             h5.attrs["status"] = data.status
             h5.attrs["error"] = data.error
+            for key, value in data.attrs.items():
+                h5.attrs[key] = value
             grid = h5.create_group("grid")
             _dataset(grid, "x", data.x)
             _dataset(grid, "y", data.y)
@@ -102,7 +106,11 @@ def read_run(path) -> RunData:
             fields={k: v[()] for k, v in h5["fields"].items() if k != "step"},
             field_steps=h5["fields/step"][()],
             summary={k: _py(v) for k, v in h5["summary"].attrs.items()},
+            attrs={k: _py(v) for k, v in h5.attrs.items() if k not in _ROOT_ATTRS},
         )
+
+
+_ROOT_ATTRS = ("rollcontact_version", "scene", "status", "error")
 
 
 def is_complete(path) -> bool:

@@ -257,7 +257,7 @@ def open_run(path) -> RunView:
         data = read_run(path)
     except (OSError, KeyError) as exc:
         raise PlotError(f"{path}: not a rollcontact run file ({type(exc).__name__}: {exc})") from None
-    scene = Scene.from_toml_text(data.scene_toml, name=path.stem)
+    scene = Scene.from_toml_text(data.scene_toml, name=path.stem, run_limits=False)
     view = RunView(path, data, scene)
     if "U0" not in data.summary or len(data.history.get("step", [])) == 0:
         raise PlotError(f"{path}: the run file has no summary or no steps (status '{data.status}'"

@@ -6,7 +6,8 @@ holds no run files. `limits.csv` (from `rollcontact limit-search`) is drawn when
 
 * <folder>_usd:        u_sd versus f_t for each w (seed Fig. 8), MDR u_sd for kappa = 1 (Eq. 15), 1.1 (Eq. 16)
                        and 3/2 (Eq. 12), u_stat (Eq. 4) and the end points u_lim = 1 - w_lim^2 (Eq. 17);
-                       the fitted kappa of each alignment (fit_kappa over its shakedown runs) in the legend.
+                       the fitted kappa of each alignment (fit_kappa over its shakedown runs, limit-search
+                       probes in runs/ excluded: fit_points) in the legend.
 * <folder>_limits:     the (f_t, w) plane (seed Fig. 9 axes: w_lim versus f_t,lim): every run as a marker
                        (filled shakedown, open ratcheting), Eqs. 18-19 and the MDR limit, limit-search brackets.
 * <folder>_ratcheting: du per period versus f_t beyond the limit (seed Fig. 11) with Eqs. 20-21.
@@ -50,6 +51,7 @@ class Point:
     u_sd: float | None
     du: float | None
     u_stat: float | None
+    probe: bool = False   # a limit-search probe (OUTDIR/runs/), not a run of the sweep itself
 
     @property
     def setting(self) -> str:
@@ -87,7 +89,7 @@ def read_point(path) -> Point:
         attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5["summary"].attrs.items()}
         text = h5.attrs["scene"]
         text = text.decode() if isinstance(text, bytes) else str(text)
-    scene = Scene.from_toml_text(text, name=Path(path).stem)
+    scene = Scene.from_toml_text(text, name=Path(path).stem, run_limits=False)
     f_t = _num(attrs.get("f_t"))
     return Point(file=Path(path).name, f_t=scene.f_t if f_t is None else f_t, w=_num(attrs.get("w")) or 0.0,
                  angle=_fold(scene.motion.angle),
@@ -122,6 +124,7 @@ def read_folder(folder, notes=None) -> list[Point]:
     for f in files:
         try:
             pts.append(read_point(f))
+            pts[-1].probe = f.parent != folder
         except (OSError, KeyError, ValueError) as exc:
             skipped.append(f"{f.name} ({type(exc).__name__})")
     if skipped and notes is not None:
@@ -144,7 +147,8 @@ def _base_angle(folder: Path):
     try:
         with h5py.File(folder / "limits.h5", "r") as h5:
             text = h5.attrs["base_scene"]
-        return _fold(Scene.from_toml_text(text.decode() if isinstance(text, bytes) else str(text)).motion.angle)
+        return _fold(Scene.from_toml_text(text.decode() if isinstance(text, bytes) else str(text),
+                                           run_limits=False).motion.angle)
     except (OSError, KeyError, ValueError):
         return None
 
@@ -194,8 +198,29 @@ def _marker(p: Point) -> str:
     return "s" if p.mdr else MARKERS.get(p.setting, "D")
 
 
+def fit_points(points) -> list:
+    """The runs kappa is fitted to: the sweep's own runs; the limit-search probes (runs/) only when the folder
+    has nothing else. Probes crowd around the shakedown limit, where u_sd is most sensitive to kappa and to
+    the grid, so they would weigh the fit towards the limit instead of over the sweep's range."""
+    sweep = [p for p in points if not p.probe]
+    return sweep if sweep else list(points)
+
+
+def fit_scope(points) -> str | None:
+    """One line saying what the kappa fit used, when the folder holds limit-search probes; else None."""
+    n_probe = sum(p.probe for p in points)
+    if not n_probe:
+        return None
+    n_sweep = len(points) - n_probe
+    if n_sweep:
+        return (f"kappa fitted to the {n_sweep} sweep runs; {n_probe} limit-search probe(s) (runs/) excluded "
+                "(they are drawn in the figures)")
+    return f"kappa fitted to the {n_probe} limit-search probe(s) (runs/): the folder holds no sweep runs"
+
+
 def kappa_fits(points) -> dict:
-    """fit_kappa (seed Eq. 13) per alignment group over its shaken-down runs with w > 0."""
+    """fit_kappa (seed Eq. 13) per alignment group over its shaken-down runs with w > 0 (see fit_points)."""
+    points = fit_points(points)
     fits = {}
     for g in sorted({p.group for p in points}):
         sel = [p for p in points if p.group == g and p.state == "shakedown" and p.u_sd is not None and p.w > 0]
@@ -342,6 +367,8 @@ def plot_folder(folder, out_dir=None, notes=None, out=print) -> list:
         notes.append(f"{limits_path}: no rows with recognisable w and f_t columns; not drawn")
     title = folder.resolve().name
     fits = kappa_fits(points)
+    if fit_scope(points):
+        out(fit_scope(points))
     for g in sorted({p.group for p in points}):
         out(f"fitted kappa (seed Eq. 13), {g}: " + (format_fit(fits[g]) if g in fits
                                                    else "no shaken-down run with w > 0, no fit"))

@@ -15,7 +15,7 @@ import time
 
 import numpy as np
 
-from bem.errors import GrossSlidingError, InputError, RollcontactError
+from bem.errors import GrossSlidingError, RollcontactError
 from bem.grid import Grid, contact_box
 from bem.operator import HalfSpaceOperator
 from solver.analytic import CattaneoMindlin, HertzSphere
@@ -25,7 +25,7 @@ from solver.shakedown import classify
 from solver.stepping import LoadPath, StepParams, StepState, build_path, run_path
 from solver.tangential import TangentialParams
 
-from .hdf5 import RunData, read_run, version, write_run
+from .hdf5 import RunData, version, write_run
 from .scene import Scene
 
 HISTORY_NAMES = ("step", "period", "W_x", "W_y", "approach", "Fn", "contact_area", "stick_area", "U_x",
@@ -91,13 +91,15 @@ def field_steps(scene: Scene, path: LoadPath) -> np.ndarray:
 
 
 def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = None,
-              restart_history: dict | None = None) -> RunOutcome:
+              restart_history: dict | None = None, restart_snapshots: tuple | None = None,
+              attrs: dict | None = None) -> RunOutcome:
     """Run `scene` and write the results to `out` (HDF5). Returns the outcome (also on failure).
 
     progress: callable(message) for progress lines (None: silent). restart / restart_history: continue
-    from a stored step (see `load_state`). A scene that cannot be discretised (grid over the element
-    limit) raises InputError before anything is computed or written; a failure during the run writes the
-    finished steps with status 'failed'.
+    from a stored step (see cases.restart); restart_snapshots = (steps, fields): the stored snapshots up to
+    it, written into the new file too; attrs: further root attributes of the file. A scene that cannot be
+    discretised (grid over the element limit) raises InputError before anything is computed or written; a
+    failure during the run writes the finished steps with status 'failed'.
     """
     if scene.solver.fidelity == "mdr":
         from .run_mdr import run_scene_mdr
@@ -120,6 +122,9 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
             history[k] = list(np.asarray(restart_history[k])[: restart.step + 1])
     fields = {k: [] for k in FIELD_NAMES}
     stored = []
+    if restart_snapshots:
+        stored = [int(s) for s in restart_snapshots[0]]
+        fields = {k: list(restart_snapshots[1][k]) for k in FIELD_NAMES}
     status, error, state_label = "complete", "", None
     dA = grid.cell_area
     if progress:
@@ -155,11 +160,13 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
         status = "failed"
         error = "interrupted by the user" if isinstance(exc, KeyboardInterrupt) else f"{type(exc).__name__}: {exc}"
         if isinstance(exc, KeyboardInterrupt):
-            _write(scene, out, grid, history, fields, stored, status, error, {})
+            _write(scene, out, grid, history, fields, stored, status, error, {}, attrs)
             raise
     wall = time.perf_counter() - t_start
     summary = summarise(scene, path, history, state_label, grid, wall)
-    data = _write(scene, out, grid, history, fields, stored, status, error, summary)
+    if state_label == "gross_sliding":   # the step that found no equilibrium; the solver's message
+        summary.update(stopped_at_step=len(history["step"]), state_message=error)
+    data = _write(scene, out, grid, history, fields, stored, status, error, summary, attrs)
     return RunOutcome(Path(out), data, wall)
 
 
@@ -196,7 +203,7 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     return {k: v for k, v in summary.items()}
 
 
-def _write(scene, out, grid, history, fields, stored, status, error, summary) -> RunData:
+def _write(scene, out, grid, history, fields, stored, status, error, summary, attrs=None) -> RunData:
     n = len(stored)
     ny, nx = grid.shape
     flds = {}
@@ -206,28 +213,9 @@ def _write(scene, out, grid, history, fields, stored, status, error, summary) ->
     hist = {k: np.asarray(v) for k, v in history.items()}
     data = RunData(scene_toml=scene.to_toml(), status=status, error=error, x=grid.x, y=grid.y,
                    history=hist, fields=flds, field_steps=np.array(stored, dtype=np.int64),
-                   summary=summary, version=version())
+                   summary=summary, version=version(), attrs=dict(attrs or {}))
     write_run(out, data)
     return data
-
-
-def load_state(path, step: int | None = None) -> tuple[Scene, StepState, dict]:
-    """Scene, StepState and history of a stored run at `step` (default: the last stored field step)."""
-    data = read_run(path)
-    scene = Scene.from_toml_text(data.scene_toml, name=Path(path).stem)
-    steps = list(np.asarray(data.field_steps))
-    if not steps:
-        raise InputError(f"{path}: stores no fields, so no step can be continued from")
-    step = steps[-1] if step is None else int(step)
-    if step not in steps:
-        raise InputError(f"{path}: fields of step {step} were not stored; stored steps: {steps}")
-    i = steps.index(step)
-    h = data.history
-    k = int(np.flatnonzero(np.asarray(h["step"]) == step)[0])
-    state = StepState(step, data.fields["p"][i].copy(),
-                      np.stack([data.fields["tau_x"][i], data.fields["tau_y"][i]]).copy(),
-                      np.array([h["U_x"][k], h["U_y"][k]], dtype=float), float(h["approach"][k]))
-    return scene, state, h
 
 
 def print_progress(message: str):
@@ -255,7 +243,12 @@ def format_summary(outcome: RunOutcome) -> str:
         lines.append(f"f_t = {s['f_t']:.4g}: U_stat = {s['U_stat']:.6f} mm, u_stat = {s['u_stat']:.5f}")
     state = s.get("state", "?")
     line = f"state: {state}"
-    if state == "shakedown":
+    if state == "gross_sliding" and "stopped_at_step" in s:
+        line += (f" at step {s['stopped_at_step']} (of {s['steps_planned']} planned): {s.get('state_message', '')}"
+                 "\ngross sliding: the tangential force reached the friction capacity mu Fn (f_t = Ft/(mu Fn) = "
+                 f"{s['f_t']:.4g}), so no static equilibrium exists and the run stopped there; this is a result "
+                 "(status complete), the steps before it are written")
+    elif state == "shakedown":
         line += (f" after {s['periods_to_shakedown']} period(s); U_sd = {s['U_sd']:.6f} mm, "
                  f"u_sd = {s['u_sd']:.5f} (w = {s['w']:.4g})")
     elif state in ("ratcheting", "undecided"):

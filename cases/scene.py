@@ -12,9 +12,12 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
 
-A key left out takes its neutral default (no tangential load, no motion), so a scene file states only
-what its scene needs. Unknown keys, wrong types and out-of-range values raise `SceneError` naming the
-key, the value and the allowed range.
+A key left out takes its default (the field specs below): the seed paper's materials, Fn, mu and rolling
+angle, but no tangential load and no motion; only [geometry] is required. So a scene file states only what
+its scene needs (the README's scene-key table lists the defaults). Unknown keys, wrong types and
+out-of-range values raise `SceneError` naming the key, the value and the allowed range; so do, for a new
+run, a grid coarser than MIN_ELEMENTS_PER_RADIUS elements per Hertz semi-axis and a path of more than
+MAX_STEPS steps.
 """
 from __future__ import annotations
 
@@ -105,6 +108,20 @@ class Output:
 RESOLUTION_PER_RADIUS = 12
 
 
+#: Fewest elements per Hertz contact semi-axis a grid may have ([grid] dx, dy <= a/3). a/dx = 3 is the coarsest
+#: resolution benchmarks/stability.py verifies (Hertz + Cattaneo converge, approach within 0.1 %); on coarser
+#: grids the discrete contact (a few elements) is not a useful approximation of the Hertz ellipse, and with
+#: dx > a the grid sized for the contact is so small that the run stops at once with ContactEdgeError,
+#: whose advice (a larger grid.margin) misses the cause.
+MIN_ELEMENTS_PER_RADIUS = 3
+
+#: Most steps (loading + rolling) one run may take. Generous: the seed's runs take ~250 steps, and a step
+#: costs at least a few ms on the smallest grids (~10 ms on the paper's 55 x 65), so 1e6 steps are hours of
+#: computing, while the load path and the history of 1e6 steps need only ~200 MB. Beyond it a typo such as
+#: dW = 1e-9 would only show up as a MemoryError (tens of GiB) while the path is built.
+MAX_STEPS = 1_000_000
+
+
 def _round_sig(x: float, digits: int) -> float:
     return float(f"{x:.{digits}g}")
 
@@ -132,7 +149,9 @@ class Scene:
 
     # --- construction ----------------------------------------------------------------------------
     @classmethod
-    def from_dict(cls, data: dict, name: str = "scene") -> "Scene":
+    def from_dict(cls, data: dict, name: str = "scene", run_limits: bool = True) -> "Scene":
+        """run_limits=False skips the checks that only a new run needs (grid resolution, number of steps), for
+        reading the scene stored in a run file written before those checks existed."""
         if not isinstance(data, dict):
             raise SceneError("scene: expected a table of sections")
         unknown = set(data) - set(SECTIONS)
@@ -152,6 +171,9 @@ class Scene:
         scene = cls(**parts, name=name)
         scene._check_consistency()
         scene._resolve_resolution()
+        if run_limits:
+            scene._check_resolution()
+            scene._check_steps()
         return scene
 
     @classmethod
@@ -164,12 +186,12 @@ class Scene:
         return cls.from_toml_text(text, name=path.stem)
 
     @classmethod
-    def from_toml_text(cls, text: str, name: str = "scene") -> "Scene":
+    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True) -> "Scene":
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene {name}: not valid TOML ({exc})") from None
-        return cls.from_dict(data, name=name)
+        return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
         out = {}
@@ -236,6 +258,48 @@ class Scene:
             self.motion = replace(self.motion, dW=self.grid.dx)
             derived.add("motion.dW")
         self.derived = frozenset(derived)
+
+    def _check_resolution(self):
+        """Each Hertz semi-axis spans at least MIN_ELEMENTS_PER_RADIUS elements (BEM only: MDR has no grid)."""
+        if self.solver.fidelity != "bem":
+            return
+        (sx, sy), (dx, dy) = self.semi_axes, self.spacing
+        key_y = "dy" if self.grid.dy is not None else "dx"
+        for key, semi, h, axis in (("dx", sx, dx, "x"), (key_y, sy, dy, "y")):
+            if semi / h < MIN_ELEMENTS_PER_RADIUS:
+                what = "contact radius a" if sx == sy else f"contact semi-axis along {axis}"
+                raise SceneError(
+                    f"[grid] {key} = {h!r} mm: the Hertz {what} = {semi:.4g} mm spans {semi / h:.2g} elements; "
+                    f"allowed range is 0 < {key} <= {semi / MIN_ELEMENTS_PER_RADIUS:.4g} mm for this scene (at "
+                    f"least {MIN_ELEMENTS_PER_RADIUS} elements per semi-axis; leave grid.dx out for the "
+                    f"recommended a/{RESOLUTION_PER_RADIUS})")
+
+    def _check_steps(self):
+        """The load path has at most MAX_STEPS steps (mirrors solver.stepping.build_path)."""
+        ld, mo = self.load, self.motion
+        n_load = 1 + ld.ramp_steps * ((1 if self.Ft > 0 else 0) + len(ld.levels))
+        if n_load > MAX_STEPS:
+            raise SceneError(f"[load] ramp_steps = {ld.ramp_steps} with {len(ld.levels)} levels: {n_load} loading "
+                             f"steps exceed the limit of {MAX_STEPS} steps per run; allowed range is ramp_steps "
+                             f"<= {(MAX_STEPS - 1) // (1 + len(ld.levels))}")
+        W = self.amplitude
+        if not (W > 0 and mo.periods > 0):
+            return
+        per_quarter = math.ceil(W / mo.dW - 1e-9)
+        n = n_load + 4 * per_quarter * mo.periods
+        if n <= MAX_STEPS:
+            return
+        ranges = []
+        most_per_quarter = (MAX_STEPS - n_load) // (4 * mo.periods)
+        if most_per_quarter >= 1:
+            ranges.append(f"dW >= {W / most_per_quarter:.4g} mm at these periods")
+        most_periods = (MAX_STEPS - n_load) // (4 * per_quarter)
+        if most_periods >= 1:
+            ranges.append(f"periods <= {most_periods} at this dW")
+        raise SceneError(
+            f"[motion] dW = {mo.dW!r} mm, periods = {mo.periods}: {n} steps ({mo.periods} periods x 4 x "
+            f"ceil(W/dW) = {per_quarter} with W = {W:.5g} mm, plus {n_load} loading steps) exceed the limit of "
+            f"{MAX_STEPS} steps per run; allowed range is " + (", or ".join(ranges) or "a larger dW"))
 
     # --- derived quantities ----------------------------------------------------------------------
     @property
@@ -374,6 +438,16 @@ def _toml_value(v) -> str:
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_toml_value(x) for x in v) + "]"
     return str(v)
+
+
+def key_unit(key: str) -> str:
+    """Unit of a scene key 'section.name' as written in HDF5 `units` attributes ('-': dimensionless or
+    not a quantity; also for a key that is not a scene key)."""
+    sec, _, name = key.partition(".")
+    for f in fields(SECTIONS[sec]) if sec in SECTIONS else ():
+        if f.name == name:
+            return f.metadata.get("unit") or "-"
+    return "-"
 
 
 DEFAULT_SCENE_FILE = "paper_perpendicular.toml"

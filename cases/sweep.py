@@ -56,7 +56,7 @@ import numpy as np
 from bem.errors import InputError, RollcontactError, SceneError
 
 from .hdf5 import is_complete
-from .scene import Scene
+from .scene import Scene, key_unit
 
 SUMMARY_COLUMNS = ("index", "state", "status", "f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period",
                    "u_stat", "periods_to_shakedown", "steps", "iterations", "wall_time", "file", "error")
@@ -68,6 +68,9 @@ relative to Ft (deg); u_sd, du, u_stat: normalised by U0 (seed Eq. 9); U_sd, dU_
 periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself; file: run file name
 (relative to OUTDIR); error: message of a failed run."""
 
+#: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
+#: run files); a varied key takes its scene unit (cases.scene.key_unit).
+COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "wall_time": "s"}
 _FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "u_stat", "wall_time")
 _INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations")
 _RANGE_DIGITS = 12          # range values are rounded to 12 significant digits (0.30000000000000004 -> 0.3)
@@ -341,7 +344,8 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
             grp = h5.create_group("runs")
             for c in header:
                 vals = [r.get(c) for r in rows]
-                grp.create_dataset(c, data=_column_array(c, vals))
+                ds = grp.create_dataset(c, data=_column_array(c, vals))
+                ds.attrs["units"] = COLUMN_UNITS.get(c) or key_unit(c)
         os.replace(tmp, outdir / f"{stem}.h5")
     finally:
         if tmp.exists():

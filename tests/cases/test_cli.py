@@ -72,13 +72,33 @@ def test_mdr_fidelity_writes_the_same_history_layout(tmp_path):
     assert d.summary["state"] == "shakedown" and d.summary["u_sd"] == pytest.approx(0.4808, abs=2e-3)
 
 
-@pytest.mark.parametrize("override, message", [
-    ("motion.W=20000", "exceeds the limit of"),         # 55 x 200 001 elements > 2048^2
+@pytest.mark.parametrize("overrides, message", [
+    ("motion.W=20000 motion.dW=100", "exceeds the limit of"),         # 55 x 200 001 elements > 2048^2
     ("motion.dW=0", r"\[motion\] dW = 0.0 mm: allowed range is \(0, inf\)"),
     ("motion.periods=-3", r"\[motion\] periods = -3: allowed range"),
+    # 4.4e10 rolling steps: refused by the scene instead of a MemoryError while the path is built
+    ("motion.dW=1e-9", r"\[motion\] dW = 1e-09 mm, periods = 10: .* allowed range is dW >= 4.4\d*e-05 mm"),
+    ("motion.periods=100000", r"\[motion\] dW = 0.2 mm, periods = 100000: .*periods <= 41666"),
+    # a/dx = 0.048: refused by the scene instead of a ContactEdgeError advising a larger margin
+    ("grid.dx=100", r"\[grid\] dx = 100.0 mm: .* allowed range is 0 < dx <= 1.59\d* mm"),
 ])
-def test_ill_posed_rolling_scenes_are_refused_before_any_work(tmp_path, capsys, override, message):
+def test_ill_posed_rolling_scenes_are_refused_before_any_work(tmp_path, capsys, overrides, message):
     import re
-    assert main(["run", "-q", "-o", str(tmp_path / "z.h5"), "--set", override]) == 2
-    assert re.search(message, capsys.readouterr().err)
+    sets = [a for o in overrides.split() for a in ("--set", o)]
+    assert main(["run", "-q", "-o", str(tmp_path / "z.h5"), *sets]) == 2
+    err = capsys.readouterr().err
+    assert re.search(message, err), err
     assert not (tmp_path / "z.h5").exists()
+
+
+def test_gross_sliding_is_a_result_the_cli_states_clearly_and_the_file_records(tmp_path, capsys):
+    """f_t = 1 is inside the scene's range [0, 1]; Ft = mu Fn has no static equilibrium (gross sliding)."""
+    out = tmp_path / "gs.h5"
+    assert main(["run", "-q", "-o", str(out), *COARSE, "--set", "load.ft=1"]) == 0
+    text = capsys.readouterr().out
+    assert "state: gross_sliding at step 1 (of 26 planned)" in text
+    assert "gross sliding: the tangential force reached the friction capacity" in text
+    assert "reaches the friction capacity mu Fn" in text                   # the solver's own message
+    d = read_run(out)
+    assert d.status == "complete" and d.summary["state"] == "gross_sliding"
+    assert d.summary["stopped_at_step"] == 1 and "friction capacity" in d.summary["state_message"]

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import csv
 from pathlib import Path
+import shutil
 
 import matplotlib.image as mpimg
 import numpy as np
@@ -17,7 +18,7 @@ from cases.plot_cmd import run_cli
 from cases.plots import DPI, FIGSIZE, open_run, seed_regions
 from cases.plots_sweep import read_folder, read_limits
 from cases.run import run_scene
-from cases.scene import default_scene
+from cases.scene import Scene, default_scene
 
 COARSE = ["grid.dx=0.4", "motion.dW=0.4", "motion.periods=5", "solver.shakedown_tol=1e-3"]
 
@@ -121,6 +122,32 @@ def test_plot_sweep_folder_draws_usd_limits_ratcheting_and_prints_fitted_kappa(r
     _check_png_pdf(paths, {"usd": "sweep_usd", "limits": "sweep_limits", "ratcheting": "sweep_ratcheting"})
     states = {(p.setting, round(p.f_t, 2)): p.state for p in read_folder(sweep)}
     assert states[("perpendicular", 0.46)] == "shakedown" and states[("parallel", 0.8)] == "ratcheting"
+
+
+def test_sweep_kappa_excludes_limit_search_probes_and_says_so(runs, tmp_path, capsys):
+    _, sweep, files = runs
+    folder = tmp_path / "with_probes"
+    shutil.copytree(sweep, folder)
+    (folder / "runs").mkdir()
+    shutil.copy(files[(90, 0.46)], folder / "runs" / "probe.h5")       # a limit-search probe
+    assert run_cli(["plot", str(folder), "-o", str(tmp_path / "figs")]) == 0
+    out = capsys.readouterr().out
+    assert "kappa fitted to the 4 sweep runs; 1 limit-search probe(s) (runs/) excluded" in out
+    line = next(x for x in out.splitlines() if x.startswith("fitted kappa (seed Eq. 13), perpendicular"))
+    assert "(n = 1," in line                          # the sweep's one shaken-down perpendicular run only
+    pts = read_folder(folder)
+    assert sum(p.probe for p in pts) == 1 and len(pts) == 5              # the figures still show the probe
+    shutil.rmtree(folder / "runs")
+    assert run_cli(["plot", str(folder), "-o", str(tmp_path / "figs")]) == 0
+    assert "limit-search" not in capsys.readouterr().out
+
+
+def test_a_stored_run_beyond_todays_run_limits_is_still_plotted(tmp_path):
+    """A file an older version wrote for a/dx = 1.5 (refused for new runs today: a/dx >= 3) stays readable."""
+    toml = default_scene().with_overrides(COARSE).to_toml().replace("dx = 0.4", "dx = 3.2")
+    path = run_scene(Scene.from_toml_text(toml, run_limits=False), tmp_path / "old" / "coarse.h5").path
+    assert open_run(path).scene.grid.dx == 3.2
+    assert [p.file for p in read_folder(tmp_path / "old")] == ["coarse.h5"]
 
 
 def test_limits_csv_of_limit_search_is_read_with_its_brackets(tmp_path):

@@ -4,7 +4,7 @@ import math
 import pytest
 
 from bem.errors import SceneError
-from cases.scene import Scene, default_scene, shipped_scene_path
+from cases.scene import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, Scene, default_scene, shipped_scene_path
 
 
 def test_default_scene_is_the_seed_table1_perpendicular_setting():
@@ -64,6 +64,33 @@ def test_bad_input_is_refused_naming_key_and_allowed_range(override, message):
         default_scene().with_overrides([override])
 
 
+def test_rolling_steps_are_limited_naming_dw_or_periods_and_the_allowed_range():
+    s = default_scene()                                 # W = 1.1007 mm, 10 periods, 2 loading steps
+    with pytest.raises(SceneError, match=r"\[motion\] dW = 1e-09 mm, periods = 10: .*exceed the limit of "
+                                         r"1000000 steps.* allowed range is dW >= 4.4\d*e-05 mm"):
+        s.with_overrides(["motion.dW=1e-9"])
+    dW_min = s.amplitude / ((MAX_STEPS - 2) // 40)
+    s.with_overrides([f"motion.dW={dW_min * (1 + 1e-9)}"])          # just inside: accepted
+    with pytest.raises(SceneError, match=r"dW >= 0.55\d* mm at these periods, or periods <= 41666 at this dW"):
+        s.with_overrides(["motion.periods=100000"])
+    s.with_overrides(["motion.periods=100000", "motion.w=0"])       # no rolling: no limit
+    with pytest.raises(SceneError, match=r"\[load\] ramp_steps = 10000 .*loading steps"):
+        s.with_overrides(["load.ramp_steps=10000", f"load.levels={[0.1] * 100}"])
+
+
+def test_grid_must_resolve_the_contact_radius_naming_dx_or_dy():
+    s = default_scene()                                 # a = 4.786 mm
+    a = s.contact_radius
+    s.with_overrides([f"grid.dx={a / MIN_ELEMENTS_PER_RADIUS}"])
+    with pytest.raises(SceneError, match=r"\[grid\] dx = 100.0 mm: .*spans 0.048 elements"):
+        s.with_overrides(["grid.dx=100"])
+    with pytest.raises(SceneError, match=r"\[grid\] dy = 2.0 mm: .*allowed range is 0 < dy <= 1.59"):
+        s.with_overrides(["grid.dy=2"])
+    with pytest.raises(SceneError, match=r"\[grid\] dx = 1.0 mm: .*semi-axis along y"):   # ellipse, dy = dx
+        s.with_overrides(["geometry.Rx=400", "geometry.Ry=1", "grid.dx=1"])
+    s.with_overrides(['solver.fidelity="mdr"', "grid.dx=100"])   # the 1-D MDR model has no grid
+
+
 def test_contradictory_alternatives_are_refused(tmp_path):
     f = tmp_path / "bad.toml"
     f.write_text("[geometry]\nR = 10.0\nRx = 5.0\n")
@@ -95,3 +122,26 @@ def test_unreadable_or_invalid_files_give_scene_errors(tmp_path):
     f.write_text("[load\nFn = 1")
     with pytest.raises(SceneError, match="not valid TOML"):
         Scene.from_toml(f)
+
+
+def test_readme_scene_table_states_the_defaults_of_cases_scene():
+    """Every `key = value` in the README's defaults column is the dataclass default; every literal default
+    (not None, not derived) is stated there."""
+    import re
+    from dataclasses import fields as dc_fields
+    from pathlib import Path
+    from cases.scene import SECTIONS, _parse_value
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `\[(\w+)\]` \|.*\| (.*) \|$", readme, re.M)}
+    assert set(rows) == set(SECTIONS)
+    for sec, klass in SECTIONS.items():
+        stated = {k: _parse_value(v) for k, v in re.findall(r"`(\w+) = ([^`]+)`", rows[sec])}
+        for f in dc_fields(klass):
+            default = f.default_factory() if callable(f.default_factory) else f.default
+            if f.name in ("ft", "w"):                     # None: neither ft nor Ft (w nor W) given, i.e. 0
+                assert default is None and stated[f.name] == 0
+            elif f.name in stated:
+                assert stated[f.name] == default, (sec, f.name, stated[f.name], default)
+            elif default is not None:
+                raise AssertionError(f"README scene table: [{sec}] {f.name} = {default!r} not stated")
+        assert set(stated) <= {f.name for f in dc_fields(klass)}, (sec, stated)

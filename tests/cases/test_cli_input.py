@@ -1,0 +1,92 @@
+"""`rollcontact run` refuses bad input with exit code 2 and one line naming the option, before any work.
+
+Real files and real runs on a coarse grid; one subprocess checks that no Python traceback reaches the user.
+"""
+import os
+from pathlib import Path
+import subprocess
+import sys
+
+import h5py
+import pytest
+
+from cases.cli import main
+
+COARSE = ["--set", "grid.dx=0.4", "--set", "motion.dW=0.4", "--set", "motion.periods=2"]
+ROLLCONTACT = str(Path(sys.executable).with_name("rollcontact"))
+
+
+def error_line(capsys):
+    err = capsys.readouterr().err.strip()
+    assert "Traceback" not in err and len(err.splitlines()) == 1, err
+    return err
+
+
+@pytest.fixture(scope="module")
+def source(tmp_path_factory):
+    path = tmp_path_factory.mktemp("src") / "src.h5"
+    assert main(["run", "-q", "-o", str(path), *COARSE]) == 0
+    return path
+
+
+def test_restart_from_a_missing_file_names_the_option(tmp_path, capsys):
+    assert main(["run", "-q", "--restart", str(tmp_path / "nonexist.h5"), "-o", str(tmp_path / "o.h5")]) == 2
+    err = error_line(capsys)
+    assert "--restart" in err and "no such file" in err
+
+
+def test_restart_from_a_file_that_is_not_a_run_file_names_the_option(tmp_path, capsys):
+    text = tmp_path / "README.md"
+    text.write_text("# not HDF5\n")
+    assert main(["run", "-q", "--restart", str(text), "-o", str(tmp_path / "o.h5")]) == 2
+    assert "--restart" in error_line(capsys)
+    other = tmp_path / "other.h5"                       # HDF5, but not written by `rollcontact run`
+    with h5py.File(other, "w") as h5:
+        h5["x"] = [1.0]
+    assert main(["run", "-q", "--restart", str(other), "-o", str(tmp_path / "o.h5")]) == 2
+    assert "--restart" in error_line(capsys)
+    assert main(["run", "-q", "--restart", str(tmp_path), "-o", str(tmp_path / "o.h5")]) == 2
+    assert "--restart" in error_line(capsys)
+
+
+def test_output_that_is_a_directory_is_refused(tmp_path, capsys):
+    (tmp_path / "results").mkdir()
+    assert main(["run", "-q", "-o", str(tmp_path / "results"), *COARSE]) == 2
+    assert "-o" in (err := error_line(capsys)) and "is a directory" in err
+    assert main(["run", "-q", "-o", str(tmp_path / "new") + os.sep, *COARSE]) == 2
+    assert "is a directory" in error_line(capsys)
+
+
+@pytest.mark.parametrize("where", ["proc", "file_parent"])
+def test_output_in_an_unwritable_place_is_refused_before_the_run(tmp_path, capsys, where):
+    if where == "proc":
+        if not Path("/proc/self").exists():
+            pytest.skip("no /proc")
+        out = "/proc/x.h5"
+    else:
+        (tmp_path / "plain").write_text("a file, not a folder")
+        out = str(tmp_path / "plain" / "x.h5")
+    # a scene whose run would take minutes: refused at once, so the check comes before the run
+    assert main(["run", "-q", "-o", out, "--set", "motion.periods=20000"]) == 2
+    err = error_line(capsys)
+    assert "-o" in err and "cannot write" in err
+
+
+def test_step_without_restart_is_an_error(tmp_path, capsys):
+    assert main(["run", "-q", "--step", "3", "-o", str(tmp_path / "o.h5"), *COARSE]) == 2
+    err = error_line(capsys)
+    assert "--step" in err and "--restart" in err
+    assert not (tmp_path / "o.h5").exists()
+
+
+def test_step_not_stored_lists_the_stored_steps_as_plain_integers(source, tmp_path, capsys):
+    assert main(["run", "-q", "--restart", str(source), "--step", "2", "-o", str(tmp_path / "o.h5")]) == 2
+    err = error_line(capsys)
+    assert "stored steps: [1, " in err and "np.int64" not in err
+
+
+def test_no_traceback_reaches_the_user_from_the_console_script(tmp_path):
+    res = subprocess.run([ROLLCONTACT, "run", "--restart", str(tmp_path / "nonexist.h5")], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=300)
+    assert res.returncode == 2 and "Traceback" not in res.stderr
+    assert res.stderr.startswith("rollcontact run: error: --restart")
