@@ -25,9 +25,11 @@ MAX_TURN = 0.5
 #: A slip element whose slip points along its traction and exceeds FLIP_SLIP a_self g is turned against its
 #: slip rather than released to stick (`ProjectedTangCG.turn_reversed`).
 FLIP_SLIP = 2.0
-#: Up to this many turned elements the curvature of the turns comes from their dense influence block (k^2
-#: coefficients, about 0.1 ms for 100), above it from one product (`ProjectedTangCG.turn_reversed`).
-DENSE_TURNS = 256
+#: The curvature of k turned elements comes from their dense influence block (`op.tangential_block`: 3 k^2
+#: lookups) while k^2 <= DENSE_TURNS x the grid's element count, else from one product
+#: (`ProjectedTangCG.turn_reversed`). At k^2 = N the block costs 0.07 / 1.4 ms against a product of 0.28 / 3.8 ms
+#: (55^2 / 217^2).
+DENSE_TURNS = 1.0
 #: Safeguard 1: products without halving the best exact residual before a gradient phase, and its products
 #: (`ProjectedTangCG.track_progress`). Chosen on the cycling cases of benchmarks/tangential_fuzz.py (load turned
 #: near the bound): stall / gradient products 30 / 40 after two stages of conservative releases: 160 / 224 products
@@ -319,7 +321,7 @@ class ProjectedTangCG:
         t = min(1, -s.d/d.Ad) (t = 1 for a single element: that is the threshold FLIP_SLIP = 2). At t = 1 the
         turned elements stay on their rim, below it they lie inside their disc (stick).
 
-        Up to DENSE_TURNS turned elements d.Ad is summed from their dense influence block and u is updated by
+        For a few turned elements (DENSE_TURNS) d.Ad is summed from their dense influence block and u is updated by
         the self coefficients (the force is then restored by the stick elements, as after any step); above it
         d is made force-neutral by a uniform shift of the stick elements and one product A d gives the
         curvature and the exact update of u. Re-classifies the iterate when anything moved. Returns the number
@@ -329,7 +331,7 @@ class ProjectedTangCG:
         n_turn, cx, cy = K.flip_direction(tau, ws.nrm, g, region, ws.w, dU[0], dU[1], FLIP_SLIP * self.a_self, d)
         if n_turn == 0:
             return 0
-        dense = n_turn <= DENSE_TURNS
+        dense = n_turn * n_turn <= DENSE_TURNS * g.size
         n_stick = self.n_stick if self.force_mode else 0
         if dense:
             rows, cols = np.nonzero((d[0] != 0.0) | (d[1] != 0.0))

@@ -131,30 +131,45 @@ def gram_and_fit(nrm, region, w):
     return gxx, gxy, gyy, bx, by
 
 
+@nb.njit(cache=True, inline="always")
+def _reversed_large(tau, nrm, g, region, w, dux, duy, big, j, i):
+    """(turn?, sx, sy, |s|) of element (j, i): a slip element whose slip s = w - dU points along its traction
+    (s.n > 0) and exceeds big g."""
+    if region[j, i] != 2:
+        return False, 0.0, 0.0, 0.0
+    sx = w[0, j, i] - dux
+    sy = w[1, j, i] - duy
+    m = _mag(sx, sy)
+    return sx * nrm[0, j, i] + sy * nrm[1, j, i] > 0.0 and m > big * g[j, i], sx, sy, m
+
+
 @_jit
 def flip_direction(tau, nrm, g, region, w, dux, duy, big, d):
     """d <- the change that turns each slip element whose slip points along its traction and is large
     (s.n > 0, |s| > big g, big in mm/MPa) to oppose its slip: d = -g s/|s| - tau there, 0 elsewhere.
-    Returns (number of such elements, sum d_x, sum d_y)."""
+    Returns (number of such elements, sum d_x, sum d_y); d is written only when there is one (a first pass
+    counts, without writing a grid buffer in the common case of none)."""
     ny, nx = region.shape
     n = 0
-    cx = 0.0
-    cy = 0.0
     for j in range(ny):
         for i in range(nx):
-            d[0, j, i] = 0.0
-            d[1, j, i] = 0.0
-            if region[j, i] == 2:
-                sx = w[0, j, i] - dux
-                sy = w[1, j, i] - duy
-                sn = sx * nrm[0, j, i] + sy * nrm[1, j, i]
-                m = _mag(sx, sy)
-                if sn > 0.0 and m > big * g[j, i]:
-                    d[0, j, i] = -g[j, i] * sx / m - tau[0, j, i]
-                    d[1, j, i] = -g[j, i] * sy / m - tau[1, j, i]
-                    cx += d[0, j, i]
-                    cy += d[1, j, i]
-                    n += 1
+            if _reversed_large(tau, nrm, g, region, w, dux, duy, big, j, i)[0]:
+                n += 1
+    cx = 0.0
+    cy = 0.0
+    if n == 0:
+        return n, cx, cy
+    for j in range(ny):
+        for i in range(nx):
+            turn, sx, sy, m = _reversed_large(tau, nrm, g, region, w, dux, duy, big, j, i)
+            if turn:
+                d[0, j, i] = -g[j, i] * sx / m - tau[0, j, i]
+                d[1, j, i] = -g[j, i] * sy / m - tau[1, j, i]
+                cx += d[0, j, i]
+                cy += d[1, j, i]
+            else:
+                d[0, j, i] = 0.0
+                d[1, j, i] = 0.0
     return n, cx, cy
 
 
