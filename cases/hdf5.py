@@ -93,6 +93,21 @@ def write_run(path, data: RunData) -> Path:
     return path
 
 
+def read_run_file(path, error, label) -> RunData:
+    """`read_run` for a file named by the user: error(message) (an exception class) when the path is missing, a
+    folder, not HDF5, or HDF5 without the run file layout; label prefixes the message (the option or the path)."""
+    p = Path(path)
+    if not p.exists():
+        raise error(f"{label}: no such file")
+    if p.is_dir():
+        raise error(f"{label}: is a folder; expected a run file (.h5) written by rollcontact run")
+    try:
+        return read_run(p)
+    except (OSError, KeyError, ValueError, TypeError) as exc:
+        why = "not an HDF5 file" if isinstance(exc, OSError) else "HDF5, but without the run file layout"
+        raise error(f"{label}: not a run file written by rollcontact run ({why})") from None
+
+
 def read_run(path) -> RunData:
     """Read a run file written by `write_run`."""
     with h5py.File(path, "r") as h5:

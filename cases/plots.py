@@ -23,7 +23,7 @@ import numpy as np  # noqa: E402
 
 from bem.errors import InputError  # noqa: E402
 
-from .hdf5 import read_run  # noqa: E402
+from .hdf5 import read_run_file  # noqa: E402
 from .scene import Scene  # noqa: E402
 
 PARALLEL_COLOUR = "#1f5fa8"        # W parallel to Ft (seed "(1)")
@@ -249,14 +249,7 @@ def seed_regions(region, p, tau_x, tau_y, mu, p_min):
 def open_run(path) -> RunView:
     """Read a run file for plotting; PlotError for a missing file or a file that is not a run file."""
     path = Path(path)
-    if not path.exists():
-        raise PlotError(f"{path}: no such file")
-    if path.is_dir():
-        raise PlotError(f"{path}: is a folder, not a run file")
-    try:
-        data = read_run(path)
-    except (OSError, KeyError) as exc:
-        raise PlotError(f"{path}: not a rollcontact run file ({type(exc).__name__}: {exc})") from None
+    data = read_run_file(path, PlotError, str(path))
     scene = Scene.from_toml_text(data.scene_toml, name=path.stem, run_limits=False)
     view = RunView(path, data, scene)
     if "U0" not in data.summary or len(data.history.get("step", [])) == 0:

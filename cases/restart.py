@@ -13,7 +13,7 @@ import numpy as np
 from bem.errors import InputError, SceneError
 from solver.stepping import StepState
 
-from .hdf5 import RunData, read_run
+from .hdf5 import RunData, read_run_file
 from .scene import Scene
 
 #: The keys a restart may change (--set): none of them enters the stored state (grid, pressure, traction,
@@ -56,16 +56,7 @@ class RestartSource:
 
 def read_source(path) -> RunData:
     """The run file given to --restart; InputError naming the option if it is missing or not a run file."""
-    p = Path(path)
-    if not p.exists():
-        raise InputError(f"--restart {path}: no such file")
-    if p.is_dir():
-        raise InputError(f"--restart {path}: is a directory; expected a run file (.h5) written by rollcontact run")
-    try:
-        return read_run(p)
-    except (OSError, KeyError, ValueError, TypeError) as exc:
-        why = "not an HDF5 file" if isinstance(exc, OSError) else "HDF5, but without the run file layout"
-        raise InputError(f"--restart {path}: not a run file written by rollcontact run ({why})") from None
+    return read_run_file(path, InputError, f"--restart {path}")
 
 
 def load_restart(path, step: int | None = None) -> RestartSource:

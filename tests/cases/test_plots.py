@@ -105,7 +105,7 @@ def test_plot_missing_file_or_non_run_file_exits_2(tmp_path, capsys):
     bogus = tmp_path / "bogus.h5"
     bogus.write_text("not hdf5")
     assert run_cli(["plot", str(bogus)]) == 2
-    assert "not a rollcontact run file" in capsys.readouterr().err
+    assert "not a run file written by rollcontact run (not an HDF5 file)" in capsys.readouterr().err
     assert run_cli(["compare", str(bogus), str(bogus)]) == 2
     empty = tmp_path / "empty"
     empty.mkdir()
