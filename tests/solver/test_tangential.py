@@ -423,7 +423,7 @@ def test_profile_step_with_previous_region_converges_to_the_plain_solution(scene
     """The contact moved by one cell with the previous division given (previous_region): before the turn line
     search this cycled for 500 products at 55^2 and 109^2 (305 products at 511^2). The step is a strictly convex
     program, so it must reach the solution of the plain start, with Coulomb's law and the force intact and a
-    cost of the order of the plain start's (measured 23 against 19 products)."""
+    cost of the order of the plain start's (measured 21 against 19 products)."""
     first = scene.cattaneo(0.5)
     X, Y = scene.X, scene.Y
     g2 = MU * solve_normal(scene.op, (X ** 2 + (Y - scene.dx) ** 2) / (2 * R), force=FN).pressure
