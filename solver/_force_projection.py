@@ -122,7 +122,7 @@ def project_on_force(y, g, f, tau_out, region=None):
     sx, sy, *_ = force_projection_eval(y, g, lx, ly, tau_out, region)
     err = math.hypot(sx - fx, sy - fy)
     if err > 1e-10 * cap:
-        raise ConvergenceError("could not place the starting traction on the force constraint",
+        raise ConvergenceError("could not project the traction onto the discs and the force constraint",
                                solver="tangential/force-projection", residual=err / cap, tol=1e-10)
 
 

@@ -68,15 +68,15 @@ first, hard-threshold form of the slip preconditioner), and the CG recurrence re
 left in stick (stick zone below one element, f_t -> 1), the reported dU is the displacement of the
 sub-element stick point (see `_stick_point_shift`).
 Cycling safeguard: the active-set iteration is not monotone in the energy (projection events, releases), and
-it can cycle: cold solves close to the bound on fine grids, and warm starts far from a load turned near the bound
-(from f_t = 0.75 along x to 0.99 turned by 1 rad: no convergence in 3000 products). When the best exact
-residual has not halved for STALL_PRODUCTS products, GRADIENT_PRODUCTS steps of the accelerated projected
-gradient method (theory §5.5; monotone in the energy, so it leaves any cycle) run from the best exact iterate,
-and CG resumes from there (`_tangcg.ProjectedTangCG.gradient_phase`; that case now 70 products). When an
-exact re-synchronisation finds the residual far above the tolerance (drift of the self-coefficient updates on
-dense slip areas), u is kept exact from then on. One early re-synchronisation, when the residual first falls
-below SYNC_EARLY tol, removes the drift of the large early moves without restarting the recurrence, so that the
-final check rarely fails.
+it can cycle: cold solves close to the bound on fine grids, and warm starts far from a load turned near the
+bound (from f_t = 0.75 along x to 0.99 turned by 1 rad at 55^2: no convergence in 3000 products; now 66). When
+the best exact residual has not halved for STALL_PRODUCTS products, GRADIENT_PRODUCTS steps of the accelerated
+projected gradient method (theory §5.5; monotone in the energy, so it leaves any cycle) run from the best exact
+iterate, and CG resumes from there (`_tangcg.ProjectedTangCG.gradient_phase`). When an exact
+re-synchronisation finds the residual far above the tolerance (drift of the self-coefficient updates on dense
+slip areas), u is kept exact from then on. One early re-synchronisation, when the residual first falls below
+SYNC_EARLY tol, removes the drift of the large early moves without restarting the recurrence, so that the final
+check rarely fails.
 Product memo: A tau' is taken from the previous solve when tau' is its traction (rolling), see
 `previous_displacement`.
 

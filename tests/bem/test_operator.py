@@ -55,6 +55,17 @@ def test_tangential_block_is_the_fft_product_restricted_to_the_elements(small):
     assert rel(u[1], xy @ d[0] + yy @ d[1]) < 1e-12
 
 
+def test_tangential_norm_bounds_the_largest_eigenvalue(small):
+    """op.tangential_norm (largest eigenvalue of the padded circulant, the gradient phase's Lipschitz constant) must
+    bound the largest eigenvalue of the dense A^tt from above; the circulant embedding is about twice it here."""
+    grid, op = small
+    D = np.block([[op.dense("xx"), op.dense("xy")], [op.dense("xy"), op.dense("yy")]])
+    lam = np.linalg.eigvalsh(0.5 * (D + D.T)).max()
+    L = op.tangential_norm()
+    assert lam <= L * (1 + 1e-12)
+    assert L < 4 * lam
+
+
 def test_out_argument_is_filled_and_buffers_do_not_leak_between_calls(small):
     grid, op = small
     rng = np.random.default_rng(2)
