@@ -44,6 +44,7 @@ import multiprocessing
 import os
 from pathlib import Path
 import re
+import threading
 import signal
 import sys
 import threading
@@ -413,6 +414,18 @@ def _worker_init(sweep_pid: int):
     threading.Thread(target=watch, daemon=True).start()
 
 
+#: Set by the CLI's SIGTERM handler (`cases.sweep_cmd`), which also raises KeyboardInterrupt. An exception raised
+#: by a signal handler while Python runs a weakref callback or a finaliser is only printed ("Exception ignored
+#: in ...") and the sweep went on to finish with exit code 0 (the kill-and-resume test failed 2 times in 12 on a
+#: loaded machine); the loops below raise it again at their next check.
+interrupt_requested = threading.Event()
+
+
+def _raise_if_interrupted():
+    if interrupt_requested.is_set():
+        raise KeyboardInterrupt
+
+
 class _LocalPool:
     """ProcessPoolExecutor with the 'forkserver' context (solver modules preloaded once) or 'spawn'."""
 
@@ -429,8 +442,13 @@ class _LocalPool:
         return self.executor.submit(fn, *args)
 
     def as_completed(self, futures):
-        from concurrent.futures import as_completed
-        return as_completed(futures)
+        """The futures as they complete, checking `interrupt_requested` at least every 0.5 s."""
+        from concurrent.futures import FIRST_COMPLETED, wait
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, timeout=0.5, return_when=FIRST_COMPLETED)
+            _raise_if_interrupted()
+            yield from done
 
     def stop(self):
         """Cancel what has not started and terminate running workers (their runs are redone on resume)."""
@@ -631,7 +649,9 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
                 report.failed += row["status"] != "complete"
                 bar.update(row)
                 write_summary(outdir, keys, rows.values(), attrs=attrs)
+                _raise_if_interrupted()
             pool.close()
+        _raise_if_interrupted()
     except KeyboardInterrupt:
         report.interrupted = True
         if pool is not None:
@@ -915,7 +935,9 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
                         if row["status"] != "failed" else f"FAILED ({row['error']})")
                 print(f"limit-search [{len(rows)}/{len(plan)}] {_describe(run.values)}: {what}",
                       file=progress, flush=True)
+            _raise_if_interrupted()
         pool.close()
+        _raise_if_interrupted()
     except KeyboardInterrupt:
         pool.stop()
         write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)

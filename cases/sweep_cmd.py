@@ -57,11 +57,16 @@ def _scene(args) -> Scene:
 
 
 def _sigterm_as_interrupt():
-    """Make SIGTERM behave like Ctrl-C so the sweep stops its workers and writes its summary."""
+    """Make SIGTERM behave like Ctrl-C (SIGINT) so the sweep stops its workers and writes its summary (the flag makes the
+    sweep raise it again if the exception was swallowed, see `cases.sweep.interrupt_requested`)."""
+    from .sweep import interrupt_requested
+
     def handler(signum, frame):
+        interrupt_requested.set()
         raise KeyboardInterrupt
     try:
         signal.signal(signal.SIGTERM, handler)
+        signal.signal(signal.SIGINT, handler)  # Ctrl-C: the same, so that a swallowed one is raised again too
     except ValueError:                      # not the main thread (e.g. called from a test thread)
         pass
 
