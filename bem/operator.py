@@ -162,6 +162,8 @@ class HalfSpaceOperator:
         f1.real_in[...] = 0.0
         self._build_inverses(planner)
         self._blocks = self._coupling_blocks() if self.coupled else {}
+        self._tangential_norm = None  # largest eigenvalue of the circulant of A^tt (`tangential_norm`)
+        self._tt_kernels = None  # real-space xx, xy, yy kernels (`tangential_block`), on first use
         # zz, xx, yy are even and xy is odd in both offsets, so their spectra are real (imaginary parts are
         # round-off, ~1e-14 of the real ones): the products multiply by real symbols (`_spectral`), a third of
         # the arithmetic and half the memory traffic of complex blocks. xz, yz (odd in one offset) are
@@ -330,7 +332,7 @@ class HalfSpaceOperator:
         """Largest eigenvalue of the padded circulant of A^tt (mm/MPa), an upper bound of the 2-norm of A^tt on the
         grid (A^tt is a principal submatrix of that circulant): the Lipschitz constant of the tangential energy's
         gradient, for gradient steps. Computed once from the symbols."""
-        if getattr(self, "_tangential_norm", None) is None:
+        if self._tangential_norm is None:
             n = self.padded[0] * self.padded[1]  # the stored spectra carry the 1/N of the inverse FFT
             xx, xy, yy = (self._real_symbols[c] * n for c in ("xx", "xy", "yy"))
             self._tangential_norm = float(np.max(0.5 * (xx + yy) + np.sqrt((0.5 * (xx - yy)) ** 2 + xy ** 2)))
@@ -341,7 +343,7 @@ class HalfSpaceOperator:
         (xx, xy, yy) in mm/MPa, entry [a, b] the displacement at element a from a unit traction on element b.
         Looked up in the real-space kernels (recovered from the spectra on the first call and kept: three
         padded real arrays, 24 MB at 511^2), so k^2 lookups: far cheaper than a product for a few elements."""
-        if getattr(self, "_tt_kernels", None) is None:
+        if self._tt_kernels is None:
             n = self.padded[0] * self.padded[1]
             self._tt_kernels = tuple(np.fft.irfft2(self.spectra[c] * n, s=self.padded) for c in ("xx", "xy", "yy"))
         rows = np.asarray(rows, dtype=np.intp)

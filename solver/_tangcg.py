@@ -86,7 +86,6 @@ class ProjectedTangCG:
         self.exact = self.exact_after_sync = False  # safeguard 2
         self.early_synced = False
         self.best, self.best_at = math.inf, 0
-        self.gradient_phases = 0  # safeguard 1 activations
         self.tau_best = self.u_best = None
 
     def matvec(self, field, out):
@@ -178,7 +177,6 @@ class ProjectedTangCG:
         self.gradient_phase(min(GRADIENT_PRODUCTS, self.params.max_iter - self.products))
         self.restart, self.early_synced, self.exact_after_sync = True, False, False
         self.best, self.best_at = math.inf, self.products
-        self.gradient_phases += 1
         return True
 
     def gradient_phase(self, n):
@@ -246,6 +244,7 @@ class ProjectedTangCG:
             u[...] = un
             j_cur, theta = j_new, theta_new
         self.synced = True
+
     def resync(self, early):
         """Restore the force (force mode) and recompute u = A tau exactly. The early re-synchronisation keeps
         the CG recurrence unless the restoration changed the division; the final one (before accepting)
@@ -349,7 +348,8 @@ class ProjectedTangCG:
         if not dense:
             self.matvec(d, ad)
             curv = K.dot(d, ad)
-        descent = -K.slope(ws.w, dU[0], dU[1], d, region)
+        # -s.d with s = w - dU; d vanishes outside the contact
+        descent = dU[0] * float(d[0].sum()) + dU[1] * float(d[1].sum()) - K.dot(ws.w, d)
         if descent <= 0.0:
             return 0  # not a descent direction: the elements are released instead
         t = 1.0 if curv <= descent else descent / curv

@@ -185,18 +185,6 @@ def shift_stick(d, region, cx, cy):
 
 
 @_jit
-def slope(w, dux, duy, d, region):
-    """sum over the contact of s.d with s = w - dU: the derivative of the step's energy along d."""
-    ny, nx = region.shape
-    acc = 0.0
-    for j in range(ny):
-        for i in range(nx):
-            if region[j, i] != 0:
-                acc += (w[0, j, i] - dux) * d[0, j, i] + (w[1, j, i] - duy) * d[1, j, i]
-    return acc
-
-
-@_jit
 def apply_flip(tau, d, t, u, ad, exact, g, region, axx, ayy):
     """tau += t d for a flip direction from `flip_direction` (+ `shift_stick`); u += t A d (ad = A d) if exact,
     else u += t diag(a_xx, a_yy) d (self coefficients, the caller re-synchronises).
