@@ -42,6 +42,10 @@ SYNC_JUMP = 1e4
 #: self-coefficient updates made in the large early moves is then removed while the CG recurrence continues,
 #: so the final check usually passes at once (paper rolling: 26 -> 22 products per ratcheting step).
 SYNC_EARLY = 1e4
+#: Lagged steps (`ProjectedTangCG.lagged_step`) continue while each lowers the residual below LAG_RHO times the
+#: residual at the previous one (benchmarks/tangential_fuzz.py, 55^2: 0.3 / 0.5 / 0.7 / none; 0.7 kept the
+#: Cattaneo counts of no limit and cut chains of lagged steps that clip the same 1-7 elements in turn: warm max 61 -> 26).
+LAG_RHO = 0.7
 
 
 class Workspace:
@@ -54,6 +58,7 @@ class Workspace:
         self.res, self.z, self.v, self.av, self.q, self.slip = f2(), f2(), f2(), f2(), f2(), f2()
         self.nrm = f2()  # unit direction of the slip tractions (written by K.classify)
         self.d, self.ad = f2(), f2()  # direction of the turns of reversed slip tractions and its product
+        self.zero = f2()  # stands for the product of a lagged step's direction, which is not computed
         self.kappa = np.zeros((ny, nx))
         self.region = np.zeros((ny, nx), np.int8)
 
@@ -83,6 +88,9 @@ class ProjectedTangCG:
         self.gram = (0.0, 0.0, 0.0)  # Gram matrix of the force constraint (force mode)
         self.n_stick = 0
         self.restart, self.synced, self.vq_prev = True, True, 1.0
+        self.lag_alpha = 0.0  # step length of the next lagged projected step; 0: none (`lagged_step`)
+        self.lagging = True
+        self.lag_r = math.inf
         self.exact = self.exact_after_sync = False  # safeguard 2
         self.early_synced = False
         self.best, self.best_at = math.inf, 0
@@ -176,6 +184,7 @@ class ProjectedTangCG:
             return False
         self.gradient_phase(min(GRADIENT_PRODUCTS, self.params.max_iter - self.products))
         self.restart, self.early_synced, self.exact_after_sync = True, False, False
+        self.lag_alpha = 0.0
         self.best, self.best_at = math.inf, self.products
         return True
 
@@ -198,15 +207,7 @@ class ProjectedTangCG:
         u_old[...] = u
         step = 1.0 / self.op.tangential_norm()
         shift = None if self.force_mode else dU
-
-        def energy(t, ut):  # J = 1/2 (t - tau') A (t - tau') + (e - dU_prescribed).t = 1/2 t.At - t.u' + ... + const
-            acc = 0.5 * K.dot(t, ut) - K.dot(t, u_prev)
-            if self.has_e:
-                acc += K.dot(self.e_arr, t)
-            if shift is not None:
-                acc -= shift[0] * float(t[0].sum()) + shift[1] * float(t[1].sum())
-            return acc
-
+        energy = self.energy
         j_cur, theta = energy(tau, u), 1.0
         for _ in range(max(n, 0)):
             theta_new = 0.5 * (1.0 + math.sqrt(1.0 + 4.0 * theta * theta))
@@ -245,6 +246,16 @@ class ProjectedTangCG:
             j_cur, theta = j_new, theta_new
         self.synced = True
 
+    def energy(self, t, ut):
+        """The step's energy J = 1/2 (t - tau') A (t - tau') + (e - dU).t up to a constant (dU only for a prescribed
+        shift; in force mode sum t is fixed), from t and ut = A t."""
+        acc = 0.5 * K.dot(t, ut) - K.dot(t, self.ws.u_prev)
+        if self.has_e:
+            acc += K.dot(self.e_arr, t)
+        if not self.force_mode:
+            acc -= self.dU[0] * float(t[0].sum()) + self.dU[1] * float(t[1].sum())
+        return acc
+
     def resync(self, early):
         """Restore the force (force mode) and recompute u = A tau exactly. The early re-synchronisation keeps
         the CG recurrence unless the restoration changed the division; the final one (before accepting)
@@ -274,6 +285,10 @@ class ProjectedTangCG:
         if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
             rz, zq = self.precond.apply(*args, levels=False)
             self.restart = True
+        if self.restart and self.lag_alpha > 0.0 and r < LAG_RHO * self.lag_r:
+            self.lag_r = r
+            self.lagged_step()
+            return
         if self.restart:
             v[...] = ws.z
         else:
@@ -291,6 +306,8 @@ class ProjectedTangCG:
         n_clip, dmax, fsx, fsy, self.n_stick = K.step(tau, v, rv / vq, u, av, g, region, self.axx, self.ayy,
                                                       MAX_TURN)
         self.restart = n_clip > 0
+        self.lag_alpha = rv / vq if (n_clip > 0 and self.lagging) else 0.0
+        self.lag_r = r
         self.vq_prev = vq
         self.synced = self.synced and dmax == 0.0
         projected = False
@@ -311,6 +328,46 @@ class ProjectedTangCG:
             self.matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
             self.synced = True
             self.memo_reuses = 0
+
+    def lagged_step(self):
+        """One projected step tau <- P(tau + alpha z) along the preconditioned residual z with alpha the exact step
+        length of the last CG step, the force restored, then u = A tau exactly: one product, where an exact CG
+        step followed by a projection event costs two (A v for the line search, then the re-synchronisation
+        after the clip and the force restoration). `cg_step` takes it instead of a restarted CG step while the
+        previous step clipped elements and the residual keeps falling (LAG_RHO): the identification phase,
+        where every step restarts the recurrence anyway. It is the expansion step of Dostal's MPRGP, with the
+        lagged Cauchy length of projected steepest descent for its fixed length. Not monotone: a step that
+        raised the energy is undone (its product is lost) and lagged steps end for the solve (fuzz campaign,
+        55^2 near_bound: max 72 -> 52 products with this check).
+
+        Cattaneo products (55^2 / 109^2 / 217^2 / 511^2; benchmarks/README.md): cold 22 / 27 / 34 / 38 ->
+        18 / 21 / 26 / 30, warm load 15 / 22 / 22 / 28 -> 15 / 19 / 19 / 22, warm profile 19 / 26 / 25 / 36 ->
+        18 / 21 / 20 / 30. Measured and not kept: 0.7 or 1.4 times the lagged length (511^2 cold 283 and 55),
+        the exact minimiser along the step actually taken (Cauchy-Barzilai-Borwein; 511^2 load 29), lagged
+        steps only while at least 8 or 32 elements are clipped (no better; 32: 511^2 cold 71)."""
+        ws, g = self.ws, self.g
+        tau, u, region = ws.tau, ws.u, ws.region
+        ws.v[...] = tau
+        ws.av[...] = u
+        j_old, synced_old, reuses_old = self.energy(tau, u), self.synced, self.memo_reuses
+        n_clip, _, fsx, fsy, self.n_stick = K.step(tau, ws.z, self.lag_alpha, u, ws.zero, g, region, self.axx,
+                                                   self.ayy, MAX_TURN)
+        self.steps += 1
+        if self.force_mode:
+            f = self.f_cells
+            if K.restore_force(tau, region, g, f[0], f[1], u, self.axx, self.ayy, self.restore_tol, fsx, fsy,
+                               self.n_stick):
+                FP.project_on_force(tau.copy(), g, f, tau, region)  # no stick element left: turn the rims
+        self.matvec(tau, u)
+        self.synced, self.memo_reuses, self.restart = True, 0, True
+        if n_clip == 0:
+            self.lag_alpha = 0.0
+        if self.energy(tau, u) > j_old:
+            tau[...] = ws.v
+            u[...] = ws.av
+            self.synced, self.memo_reuses = synced_old, reuses_old
+            self.lag_alpha, self.lagging = 0.0, False
+            self.n_stick = K.classify(tau, g, region, ws.nrm, u, ws.u_prev, self.e_arr, self.has_e, ws.w)[0]
 
     def turn_reversed(self):
         """Turn the slip tractions whose slip points along them and exceeds FLIP_SLIP a_self g against their

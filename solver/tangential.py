@@ -55,7 +55,12 @@ contacts of 16000 elements and more, a quarter of a product each); the element l
 (`solver._tangential_kernels`, `solver._preconditioner`) on preallocated buffers. The displacement
 u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation, projection) are
 added with the self coefficients only, and u is recomputed exactly (one extra `op.tangential`) after steps
-that changed the division by projection and always before convergence is accepted.
+that changed the division by projection and always before convergence is accepted. While the division is
+being identified (the previous step projected elements) the next step is a lagged projected step
+(`_tangcg.ProjectedTangCG.lagged_step`: along the preconditioned residual with the previous exact step length,
+then u exactly), one product where an exact step and its re-synchronisation take two; it is undone, and not
+tried again in the solve, if it raised the energy (cold Cattaneo 22 / 27 / 34 / 38 -> 18 / 21 / 26 / 30
+products at 55^2 / 109^2 / 217^2 / 511^2).
 `TangentialResult.iterations` counts every `op.tangential` call of the solve (including the product A tau'
 and the re-synchronisations), so it is the honest cost in convolution pairs.
 

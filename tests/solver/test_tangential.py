@@ -277,6 +277,89 @@ def test_gradient_phase_lowers_the_energy_and_leaves_u_exact(scene, force_mode):
         np.testing.assert_allclose(ws.tau.sum(axis=(1, 2)), it.f_cells, rtol=0, atol=1e-10 * scene.bound.sum())
 
 
+def _moved_contact_start(scene):
+    """The iteration object at the start of a profile step: from the state at f_t = 0.5, the contact moved by
+    one cell in y at the same force (the warm profile step of benchmarks/tangential_cattaneo.py)."""
+    from solver import _force_projection as FP
+    from solver._tangcg import ProjectedTangCG
+    previous = scene.cattaneo(0.5).traction
+    g = MU * solve_normal(scene.op, (scene.X ** 2 + (scene.Y - scene.dx) ** 2) / (2 * R), force=FN).pressure
+    f_cells = np.array([0.5 * MU * FN / scene.grid.cell_area, 0.0])
+    it = ProjectedTangCG(scene.op, g, np.zeros(2), f_cells, None, TangentialParams(), str)
+    ws = it.ws
+    FP.start_traction(ws.tau, previous, g, f_cells, None, ws.region, ws.u, 1.0, 1.0)
+    it.matvec(ws.tau, ws.u)
+    it.matvec(previous, ws.u_prev)
+    return it, g
+
+
+@pytest.mark.parametrize("case", ["moved contact, force", "turned load, shift"])
+def test_lagged_steps_cost_one_product_and_leave_u_exact(scene, case):
+    """While the previous CG step clipped elements, the next step is a projected step along the preconditioned
+    residual with the lagged step length (`ProjectedTangCG.lagged_step`): one product instead of two. Each such
+    step must keep |tau| <= g, put the force back to round-off (prescribed force) and leave u = A tau exact,
+    because the residual that decides the next step is computed from u. Driven by hand through evaluate /
+    cg_step for 30 steps from the start of a profile step (prescribed force) and of the turned-load step with
+    a prescribed shift; both identify the division through chains of projection events."""
+    from solver._tangcg import LAG_RHO
+    it, g = _moved_contact_start(scene) if case.endswith("force") else (_stalled_start(scene, False)[0], scene.bound)
+    ws = it.ws
+    a_self = max(scene.op.self_coefficients.values())
+    lagged = 0
+    for _ in range(30):
+        r = it.evaluate()
+        if not (it.restart and it.lag_alpha > 0.0 and r < LAG_RHO * it.lag_r):
+            it.cg_step(r)
+            continue
+        products = it.products
+        it.cg_step(r)
+        assert it.lagging  # not undone here (test_a_lagged_step_that_raises_the_energy_is_undone)
+        lagged += 1
+        assert it.products == products + 1
+        exact = scene.op.tangential(ws.tau[0], ws.tau[1])
+        assert np.abs(ws.u - exact).max() < 1e-12 * a_self * g.max()
+        assert np.all(np.hypot(*ws.tau) <= g * (1 + 1e-12))
+        if it.force_mode:
+            np.testing.assert_allclose(ws.tau.sum(axis=(1, 2)), it.f_cells, rtol=0, atol=1e-10 * g.sum())
+    assert lagged >= 3
+
+
+def test_a_lagged_step_that_raises_the_energy_is_undone(scene):
+    """The lagged step is not monotone: near the bound its fixed length can overshoot. Such a step must be
+    undone (traction and u as before it) and end the lagged steps of the solve. Case from the fuzz campaign
+    (benchmarks/tangential_fuzz.py, seed 202400244): previous state f_t = 0.7383 at 2.954 rad, bound scaled by
+    1.034, load f_t = 0.9872 at 4.569 rad; the third lagged step raised the energy 1/2 (tau - tau') A (tau - tau')
+    (without the check near_bound cases of the campaign took up to 72 products instead of 52)."""
+    from solver import _force_projection as FP
+    from solver._tangcg import LAG_RHO, ProjectedTangCG
+    capacity = traction_capacity(scene.bound, scene.grid)
+    previous = solve_tangential(scene.op, scene.bound, scene.zero,
+                                force=(0.7383 * capacity * math.cos(2.954), 0.7383 * capacity * math.sin(2.954))).traction
+    g = 1.034 * scene.bound
+    f_cells = np.array([math.cos(4.569), math.sin(4.569)]) * 0.9872 * 1.034 * capacity / scene.grid.cell_area
+    it = ProjectedTangCG(scene.op, g, np.zeros(2), f_cells, None, TangentialParams(), str)
+    ws = it.ws
+    FP.start_traction(ws.tau, previous, g, f_cells, None, ws.region, ws.u, 1.0, 1.0)
+    it.matvec(ws.tau, ws.u)
+    it.matvec(previous, ws.u_prev)
+
+    def energy(tau):
+        d = tau - previous
+        return 0.5 * float(np.sum(d * scene.op.tangential(d[0], d[1])))
+
+    for _ in range(20):
+        r = it.evaluate()
+        lagged = it.restart and it.lag_alpha > 0.0 and r < LAG_RHO * it.lag_r
+        before, tau_before = energy(ws.tau), ws.tau.copy()
+        it.cg_step(r)
+        if lagged:
+            assert energy(ws.tau) <= before
+            if not it.lagging:
+                np.testing.assert_array_equal(ws.tau, tau_before)
+                break
+    assert not it.lagging
+
+
 def test_iteration_budget_exhausted_raises_with_regime(scene):
     """A budget that is too small raises ConvergenceError naming f_t and the stick-element count (no silent
     return, no NaN)."""
