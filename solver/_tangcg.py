@@ -44,7 +44,8 @@ SYNC_JUMP = 1e4
 SYNC_EARLY = 1e4
 #: Lagged steps (`ProjectedTangCG.lagged_step`) continue while each lowers the residual below LAG_RHO times the
 #: residual at the previous one (benchmarks/tangential_fuzz.py, 55^2: 0.3 / 0.5 / 0.7 / none; 0.7 kept the
-#: Cattaneo counts of no limit and cut chains of lagged steps that clip the same 1-7 elements in turn: warm max 61 -> 26).
+#: Cattaneo counts of no limit and cut chains of lagged steps that clip the same 1-7 elements in turn:
+#: warm max 61 -> 26).
 LAG_RHO = 0.7
 
 
@@ -276,16 +277,18 @@ class ProjectedTangCG:
 
     def cg_step(self, r):
         """One preconditioned, deflated CG step (one product) on the current division, then back onto the
-        discs; projection events re-synchronise u and restart the recurrence."""
+        discs; projection events re-synchronise u and restart the recurrence. In the identification phase a
+        lagged projected step (`lagged_step`) is taken instead."""
         ws, g = self.ws, self.g
         tau, u, region, v, av = ws.tau, ws.u, ws.region, ws.v, ws.av
         # preconditioned, deflated residual: z = Pi (sum_l W_l P M_l P W_l r + D r) (solver._preconditioner)
         args = (ws.nrm, region, ws.kappa, self.axx, self.ayy, ws.res, ws.z, self.force_mode, self.gram, ws.q)
         rz, zq = self.precond.apply(*args)
+        lag = self.restart and self.lag_alpha > 0.0 and r < LAG_RHO * self.lag_r
         if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
             rz, zq = self.precond.apply(*args, levels=False)
-            self.restart = True
-        if self.restart and self.lag_alpha > 0.0 and r < LAG_RHO * self.lag_r:
+            self.restart, lag = True, False  # the lagged length belongs to the other preconditioner
+        if lag:
             self.lag_r = r
             self.lagged_step()
             return
@@ -334,8 +337,9 @@ class ProjectedTangCG:
         length of the last CG step, the force restored, then u = A tau exactly: one product, where an exact CG
         step followed by a projection event costs two (A v for the line search, then the re-synchronisation
         after the clip and the force restoration). `cg_step` takes it instead of a restarted CG step while the
-        previous step clipped elements and the residual keeps falling (LAG_RHO): the identification phase,
-        where every step restarts the recurrence anyway. It is the expansion step of Dostal's MPRGP, with the
+        previous step clipped elements (stick tractions projected onto their disc, or slip tractions held by
+        the MAX_TURN trust region) and the residual keeps falling (LAG_RHO): the identification phase, where
+        every step restarts the recurrence anyway. It is the expansion step of Dostal's MPRGP, with the
         lagged Cauchy length of projected steepest descent for its fixed length. Not monotone: a step that
         raised the energy is undone (its product is lost) and lagged steps end for the solve (fuzz campaign,
         55^2 near_bound: max 72 -> 52 products with this check).
@@ -349,6 +353,8 @@ class ProjectedTangCG:
         tau, u, region = ws.tau, ws.u, ws.region
         ws.v[...] = tau
         ws.av[...] = u
+        # from the carried u: after dense turns (`turn_reversed`) it is exact only up to the self-coefficient
+        # updates, so the comparison may err; that costs products (an undo, or a step kept), never accuracy
         j_old, synced_old, reuses_old = self.energy(tau, u), self.synced, self.memo_reuses
         n_clip, _, fsx, fsy, self.n_stick = K.step(tau, ws.z, self.lag_alpha, u, ws.zero, g, region, self.axx,
                                                    self.ayy, MAX_TURN)
@@ -366,8 +372,7 @@ class ProjectedTangCG:
             tau[...] = ws.v
             u[...] = ws.av
             self.synced, self.memo_reuses = synced_old, reuses_old
-            self.lag_alpha, self.lagging = 0.0, False
-            self.n_stick = K.classify(tau, g, region, ws.nrm, u, ws.u_prev, self.e_arr, self.has_e, ws.w)[0]
+            self.lag_alpha, self.lagging = 0.0, False  # region and n_stick are renewed by the next `evaluate`
 
     def turn_reversed(self):
         """Turn the slip tractions whose slip points along them and exceeds FLIP_SLIP a_self g against their

@@ -302,7 +302,10 @@ def test_lagged_steps_cost_one_product_and_leave_u_exact(scene, case):
     cg_step for 30 steps from the start of a profile step (prescribed force) and of the turned-load step with
     a prescribed shift; both identify the division through chains of projection events."""
     from solver._tangcg import LAG_RHO
-    it, g = _moved_contact_start(scene) if case.endswith("force") else (_stalled_start(scene, False)[0], scene.bound)
+    if case.endswith("force"):
+        it, g = _moved_contact_start(scene)
+    else:
+        it, g = _stalled_start(scene, False)[0], scene.bound
     ws = it.ws
     a_self = max(scene.op.self_coefficients.values())
     lagged = 0
@@ -350,12 +353,14 @@ def test_a_lagged_step_that_raises_the_energy_is_undone(scene):
     for _ in range(20):
         r = it.evaluate()
         lagged = it.restart and it.lag_alpha > 0.0 and r < LAG_RHO * it.lag_r
-        before, tau_before = energy(ws.tau), ws.tau.copy()
+        before, tau_before, u_before, synced = energy(ws.tau), ws.tau.copy(), ws.u.copy(), it.synced
         it.cg_step(r)
         if lagged:
             assert energy(ws.tau) <= before
-            if not it.lagging:
+            if not it.lagging:  # undone: the state before the step, with its u and whether u was exact
                 np.testing.assert_array_equal(ws.tau, tau_before)
+                np.testing.assert_array_equal(ws.u, u_before)
+                assert it.synced == synced
                 break
     assert not it.lagging
 
