@@ -154,11 +154,19 @@ def restore_force(tau, region, g, f_cells, u, axx, ayy, tol):
     coefficients only (the caller re-synchronises it). Returns (rims turned, stick elements pushed onto their
     rim): either changes the division, and the first is not a local correction of u."""
     n_stick = int(np.count_nonzero(region == 1))
-    if _kernel_restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, float(tau[0].sum()),
-                       float(tau[1].sum()), n_stick):
-        project_on_force(tau.copy(), g, f_cells, tau, region)
+    if restore_force_from_sums(tau, region, g, f_cells, u, axx, ayy, tol, float(tau[0].sum()), float(tau[1].sum()),
+                               n_stick):
         return True, False
     return False, int(np.count_nonzero(region == 1)) != n_stick
+
+
+def restore_force_from_sums(tau, region, g, f_cells, u, axx, ayy, tol, sx, sy, n_stick):
+    """`restore_force` with sum tau = (sx, sy) and the stick count already known (a step's kernel returns them,
+    which saves the passes). Returns True when the rims were turned (no stick element left)."""
+    if _kernel_restore_force(tau, region, g, f_cells[0], f_cells[1], u, axx, ayy, tol, sx, sy, n_stick):
+        project_on_force(tau.copy(), g, f_cells, tau, region)
+        return True
+    return False
 
 
 def _keep_slip_on_bound(tau, g, prev_region):

@@ -257,6 +257,16 @@ class ProjectedTangCG:
             acc -= self.dU[0] * float(t[0].sum()) + self.dU[1] * float(t[1].sum())
         return acc
 
+    def exact_u(self):
+        """u = A tau by one product: u is exact again and no longer rests on a memoised product."""
+        self.matvec(self.ws.tau, self.ws.u)
+        self.synced, self.memo_reuses = True, 0
+
+    def lag_due(self, r):
+        """True when the next step is a lagged projected step (`lagged_step`): the previous step clipped elements
+        and the residual r fell below LAG_RHO times its value at that step."""
+        return self.restart and self.lag_alpha > 0.0 and r < LAG_RHO * self.lag_r
+
     def resync(self, early):
         """Restore the force (force mode) and recompute u = A tau exactly. The early re-synchronisation keeps
         the CG recurrence unless the restoration changed the division; the final one (before accepting)
@@ -266,9 +276,7 @@ class ProjectedTangCG:
         if self.force_mode:
             changed = FP.restore_force(ws.tau, ws.region, self.g, self.f_cells, ws.u, self.axx, self.ayy,
                                        self.restore_tol)
-        self.matvec(ws.tau, ws.u)
-        self.synced = True
-        self.memo_reuses = 0
+        self.exact_u()
         if early:
             self.early_synced = True
             self.restart = self.restart or any(changed)
@@ -284,7 +292,7 @@ class ProjectedTangCG:
         # preconditioned, deflated residual: z = Pi (sum_l W_l P M_l P W_l r + D r) (solver._preconditioner)
         args = (ws.nrm, region, ws.kappa, self.axx, self.ayy, ws.res, ws.z, self.force_mode, self.gram, ws.q)
         rz, zq = self.precond.apply(*args)
-        lag = self.restart and self.lag_alpha > 0.0 and r < LAG_RHO * self.lag_r
+        lag = self.lag_due(r)
         if rz <= 0.0:  # preconditioner lost definiteness on this division: plain residual
             rz, zq = self.precond.apply(*args, levels=False)
             self.restart, lag = True, False  # the lagged length belongs to the other preconditioner
@@ -321,16 +329,13 @@ class ProjectedTangCG:
         # counts unchanged). In between, the iterate misses the force by the renormalisations since.
         exact_step = self.exact and dmax > 0.0
         if self.force_mode and (n_clip > 0 or exact_step):
-            f = self.f_cells
-            if K.restore_force(tau, region, g, f[0], f[1], u, self.axx, self.ayy, self.restore_tol, fsx, fsy,
-                               self.n_stick):
-                # no stick element left to carry the force: turn the slip tractions (they stay on their rim)
-                FP.project_on_force(tau.copy(), g, f, tau, region)
-                projected = self.restart = True  # a turn of every slip traction: not a local correction
+            # with no stick element left to carry the force the slip tractions turn on their rims: a turn of
+            # every slip traction, not a local correction
+            projected = FP.restore_force_from_sums(tau, region, g, self.f_cells, u, self.axx, self.ayy,
+                                                   self.restore_tol, fsx, fsy, self.n_stick)
+            self.restart = self.restart or projected
         if n_clip > 0 or projected or exact_step:
-            self.matvec(tau, u)  # projection moved many tractions: re-synchronise u exactly
-            self.synced = True
-            self.memo_reuses = 0
+            self.exact_u()  # projection moved many tractions: re-synchronise u exactly
 
     def lagged_step(self):
         """One projected step tau <- P(tau + alpha z) along the preconditioned residual z with alpha the exact step
@@ -344,9 +349,9 @@ class ProjectedTangCG:
         raised the energy is undone (its product is lost) and lagged steps end for the solve (fuzz campaign,
         55^2 near_bound: max 72 -> 52 products with this check).
 
-        Cattaneo products (55^2 / 109^2 / 217^2 / 511^2; benchmarks/README.md): cold 22 / 27 / 34 / 38 ->
-        18 / 21 / 26 / 30, warm load 15 / 22 / 22 / 28 -> 15 / 19 / 19 / 22, warm profile 19 / 26 / 25 / 36 ->
-        18 / 21 / 20 / 30. Measured and not kept: 0.7 or 1.4 times the lagged length (511^2 cold 283 and 55),
+        Cattaneo products (55^2 / 109^2 / 217^2 / 511^2; benchmarks/tangential_cattaneo.py): cold 22 / 27 / 34 /
+        38 -> 18 / 21 / 26 / 30, warm load 15 / 22 / 22 / 28 -> 15 / 19 / 19 / 22, warm profile 20 / 27 / 26 / 37
+        -> 19 / 22 / 21 / 31. Measured and not kept: 0.7 or 1.4 times the lagged length (511^2 cold 283 and 55),
         the exact minimiser along the step actually taken (Cauchy-Barzilai-Borwein; 511^2 load 29), lagged
         steps only while at least 8 or 32 elements are clipped (no better; 32: 511^2 cold 71)."""
         ws, g = self.ws, self.g
@@ -360,12 +365,10 @@ class ProjectedTangCG:
                                                    self.ayy, MAX_TURN)
         self.steps += 1
         if self.force_mode:
-            f = self.f_cells
-            if K.restore_force(tau, region, g, f[0], f[1], u, self.axx, self.ayy, self.restore_tol, fsx, fsy,
-                               self.n_stick):
-                FP.project_on_force(tau.copy(), g, f, tau, region)  # no stick element left: turn the rims
-        self.matvec(tau, u)
-        self.synced, self.memo_reuses, self.restart = True, 0, True
+            FP.restore_force_from_sums(tau, region, g, self.f_cells, u, self.axx, self.ayy, self.restore_tol, fsx,
+                                       fsy, self.n_stick)
+        self.exact_u()
+        self.restart = True
         if n_clip == 0:
             self.lag_alpha = 0.0
         if self.energy(tau, u) > j_old:

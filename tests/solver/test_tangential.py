@@ -232,21 +232,28 @@ def test_warm_start_far_from_a_turned_load_near_the_bound_converges(scene):
     assert res.iterations < 150  # measured 66
 
 
-def _stalled_start(scene, force_mode):
-    """The iteration object at the start of the turned-load step above, with the start as its best iterate."""
+def _iteration_at_start(scene, g, previous, f_cells, dU):
+    """The iteration object of a step on the bound g (MPa) from the previous traction (MPa), with the prescribed
+    force f_cells (MPa x elements) or, when None, the prescribed shift dU (mm): the start as `solve_tangential`
+    makes it, u = A tau and u' = A tau' exact."""
     from solver import _force_projection as FP
     from solver._tangcg import ProjectedTangCG
+    it = ProjectedTangCG(scene.op, g, np.asarray(dU, dtype=float), f_cells, None, TangentialParams(), str)
+    ws = it.ws
+    FP.start_traction(ws.tau, previous, g, f_cells, None, ws.region, ws.u, 1.0, 1.0)
+    it.matvec(ws.tau, ws.u)
+    it.matvec(previous, ws.u_prev)
+    return it
+
+
+def _stalled_start(scene, force_mode):
+    """The iteration object at the start of the turned-load step above, with the start as its best iterate."""
     capacity = traction_capacity(scene.bound, scene.grid)
     first = scene.cattaneo(0.75)
     dA = scene.grid.cell_area
     f_cells = np.array([math.cos(1.0), math.sin(1.0)]) * 0.99 * capacity / dA if force_mode else None
-    dU = np.zeros(2) if force_mode else np.array([0.3, 0.4])
-    it = ProjectedTangCG(scene.op, scene.bound, dU, f_cells, None, TangentialParams(), str)
-    ws = it.ws
-    FP.start_traction(ws.tau, first.traction, scene.bound, f_cells, None, ws.region, ws.u, 1.0, 1.0)
-    it.matvec(ws.tau, ws.u)
-    it.matvec(first.traction, ws.u_prev)
-    it.tau_best, it.u_best = ws.tau.copy(), ws.u.copy()
+    it = _iteration_at_start(scene, scene.bound, first.traction, f_cells, [0.0, 0.0] if force_mode else [0.3, 0.4])
+    it.tau_best, it.u_best = it.ws.tau.copy(), it.ws.u.copy()
     return it, first.traction
 
 
@@ -280,17 +287,9 @@ def test_gradient_phase_lowers_the_energy_and_leaves_u_exact(scene, force_mode):
 def _moved_contact_start(scene):
     """The iteration object at the start of a profile step: from the state at f_t = 0.5, the contact moved by
     one cell in y at the same force (the warm profile step of benchmarks/tangential_cattaneo.py)."""
-    from solver import _force_projection as FP
-    from solver._tangcg import ProjectedTangCG
-    previous = scene.cattaneo(0.5).traction
     g = MU * solve_normal(scene.op, (scene.X ** 2 + (scene.Y - scene.dx) ** 2) / (2 * R), force=FN).pressure
     f_cells = np.array([0.5 * MU * FN / scene.grid.cell_area, 0.0])
-    it = ProjectedTangCG(scene.op, g, np.zeros(2), f_cells, None, TangentialParams(), str)
-    ws = it.ws
-    FP.start_traction(ws.tau, previous, g, f_cells, None, ws.region, ws.u, 1.0, 1.0)
-    it.matvec(ws.tau, ws.u)
-    it.matvec(previous, ws.u_prev)
-    return it, g
+    return _iteration_at_start(scene, g, scene.cattaneo(0.5).traction, f_cells, [0.0, 0.0]), g
 
 
 @pytest.mark.parametrize("case", ["moved contact, force", "turned load, shift"])
@@ -301,7 +300,6 @@ def test_lagged_steps_cost_one_product_and_leave_u_exact(scene, case):
     because the residual that decides the next step is computed from u. Driven by hand through evaluate /
     cg_step for 30 steps from the start of a profile step (prescribed force) and of the turned-load step with
     a prescribed shift; both identify the division through chains of projection events."""
-    from solver._tangcg import LAG_RHO
     if case.endswith("force"):
         it, g = _moved_contact_start(scene)
     else:
@@ -311,7 +309,7 @@ def test_lagged_steps_cost_one_product_and_leave_u_exact(scene, case):
     lagged = 0
     for _ in range(30):
         r = it.evaluate()
-        if not (it.restart and it.lag_alpha > 0.0 and r < LAG_RHO * it.lag_r):
+        if not it.lag_due(r):
             it.cg_step(r)
             continue
         products = it.products
@@ -333,18 +331,13 @@ def test_a_lagged_step_that_raises_the_energy_is_undone(scene):
     (benchmarks/tangential_fuzz.py, seed 202400244): previous state f_t = 0.7383 at 2.954 rad, bound scaled by
     1.034, load f_t = 0.9872 at 4.569 rad; the third lagged step raised the energy 1/2 (tau - tau') A (tau - tau')
     (without the check near_bound cases of the campaign took up to 72 products instead of 52)."""
-    from solver import _force_projection as FP
-    from solver._tangcg import LAG_RHO, ProjectedTangCG
     capacity = traction_capacity(scene.bound, scene.grid)
-    previous = solve_tangential(scene.op, scene.bound, scene.zero,
-                                force=(0.7383 * capacity * math.cos(2.954), 0.7383 * capacity * math.sin(2.954))).traction
+    F = (0.7383 * capacity * math.cos(2.954), 0.7383 * capacity * math.sin(2.954))
+    previous = solve_tangential(scene.op, scene.bound, scene.zero, force=F).traction
     g = 1.034 * scene.bound
     f_cells = np.array([math.cos(4.569), math.sin(4.569)]) * 0.9872 * 1.034 * capacity / scene.grid.cell_area
-    it = ProjectedTangCG(scene.op, g, np.zeros(2), f_cells, None, TangentialParams(), str)
+    it = _iteration_at_start(scene, g, previous, f_cells, [0.0, 0.0])
     ws = it.ws
-    FP.start_traction(ws.tau, previous, g, f_cells, None, ws.region, ws.u, 1.0, 1.0)
-    it.matvec(ws.tau, ws.u)
-    it.matvec(previous, ws.u_prev)
 
     def energy(tau):
         d = tau - previous
@@ -352,7 +345,7 @@ def test_a_lagged_step_that_raises_the_energy_is_undone(scene):
 
     for _ in range(20):
         r = it.evaluate()
-        lagged = it.restart and it.lag_alpha > 0.0 and r < LAG_RHO * it.lag_r
+        lagged = it.lag_due(r)
         before, tau_before, u_before, synced = energy(ws.tau), ws.tau.copy(), ws.u.copy(), it.synced
         it.cg_step(r)
         if lagged:
