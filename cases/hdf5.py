@@ -8,7 +8,9 @@ Layout (public contract; later versions add to it, never rename):
     /grid/x, /grid/y    cell-centre coordinates (mm)
     /history/<name>     one value per step (see README for names and units)
     /fields/<name>      shape (snapshots, ny, nx); /fields/step says which steps were stored
-    /summary            attrs: run summary (state, u_sd, ...)
+    /summary            attrs: run summary (state, u_sd, ...); a value that does not apply (u_sd of a
+                        ratcheting run, say) is NaN, or -1 for the counts in SUMMARY_COUNTS, as in a
+                        sweep's summary.h5 (files of version 0.1.0 before 2026-11-24 wrote the text 'none')
 
 A reader that opens a file sees either nothing (no file) or a complete file: the rename is atomic on
 POSIX file systems. A run that fails still writes what it computed, with status = 'failed'.
@@ -17,6 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from importlib import metadata
+import math
 import os
 from pathlib import Path
 
@@ -32,6 +35,11 @@ UNITS = {
     "u_x": "mm", "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip", "x": "mm", "y": "mm",
     "wall_time": "s",
 }
+
+
+#: Summary attributes that are counts: stored as -1 when they do not apply (every other one as NaN).
+SUMMARY_COUNTS = ("periods_to_shakedown", "stopped_at_step", "steps", "steps_planned", "iterations", "nx", "ny",
+                  "elements", "springs")
 
 
 def version() -> str:
@@ -85,7 +93,7 @@ def write_run(path, data: RunData) -> Path:
                 _dataset(flds, name, values, compression="gzip" if chunks else None, chunks=chunks)
             summ = h5.create_group("summary")
             for key, value in data.summary.items():
-                summ.attrs[key] = _attr_value(value)
+                summ.attrs[key] = _attr_value(key, value)
         os.replace(tmp, path)
     finally:
         if tmp.exists():
@@ -120,7 +128,7 @@ def read_run(path) -> RunData:
             history={k: v[()] for k, v in h5["history"].items()},
             fields={k: v[()] for k, v in h5["fields"].items() if k != "step"},
             field_steps=h5["fields/step"][()],
-            summary={k: _py(v) for k, v in h5["summary"].attrs.items()},
+            summary=summary_from_attrs(h5["summary"].attrs),
             attrs={k: _py(v) for k, v in h5.attrs.items() if k not in _ROOT_ATTRS},
         )
 
@@ -144,9 +152,22 @@ def _dataset(group, name, values, **kwargs):
     return ds
 
 
-def _attr_value(value):
+def summary_from_attrs(attrs) -> dict:
+    """The /summary attributes as a dict, with None for the values that do not apply (NaN, -1 for a count,
+    or the text 'none' of older files)."""
+    out = {}
+    for key, value in attrs.items():
+        value = _py(value)
+        if ((isinstance(value, str) and value == "none") or (isinstance(value, float) and math.isnan(value))
+                or (key in SUMMARY_COUNTS and value == -1)):
+            value = None
+        out[key] = value
+    return out
+
+
+def _attr_value(key, value):
     if value is None:
-        return "none"
+        return -1 if key in SUMMARY_COUNTS else np.nan
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
     return value

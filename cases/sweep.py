@@ -44,7 +44,6 @@ import multiprocessing
 import os
 from pathlib import Path
 import re
-import threading
 import signal
 import sys
 import threading
@@ -56,7 +55,7 @@ import numpy as np
 
 from bem.errors import InputError, RollcontactError, SceneError
 
-from .hdf5 import is_complete
+from .hdf5 import is_complete, summary_from_attrs
 from .scene import Scene, key_unit
 
 SUMMARY_COLUMNS = ("index", "state", "status", "f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period",
@@ -249,7 +248,7 @@ def stored_summary(path) -> dict | None:
         with h5py.File(path, "r") as h5:
             out = {"status": _str(h5.attrs.get("status", "")), "error": _str(h5.attrs.get("error", "")),
                    "scene": _str(h5.attrs.get("scene", ""))}
-            out["summary"] = {k: _py(v) for k, v in h5["summary"].attrs.items()} if "summary" in h5 else {}
+            out["summary"] = summary_from_attrs(h5["summary"].attrs) if "summary" in h5 else {}
             return out
     except (OSError, KeyError):
         return None
@@ -257,14 +256,6 @@ def stored_summary(path) -> dict | None:
 
 def _str(v):
     return v.decode() if isinstance(v, bytes) else str(v)
-
-
-def _py(v):
-    if isinstance(v, bytes):
-        v = v.decode()
-    if isinstance(v, np.generic):
-        v = v.item()
-    return None if v == "none" else v
 
 
 def _stored_row(run: PlannedRun, outdir) -> dict:

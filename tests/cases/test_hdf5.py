@@ -27,12 +27,13 @@ def test_write_then_read_gives_back_every_array_and_attribute(tmp_path):
     assert back.fields["region"].dtype == np.int8
     np.testing.assert_array_equal(back.field_steps, [0, 4])
     assert back.summary["state"] == "shakedown" and back.summary["u_sd"] == 0.5
-    assert back.summary["x"] == "none"
+    assert back.summary["x"] is None
     with h5py.File(path) as h5:
         assert h5["history/approach"].attrs["units"] == "mm"
         assert h5["fields/p"].attrs["units"] == "MPa"
         assert h5["fields/p"].shape == (2, 3, 4)  # (snapshots, ny, nx)
         assert "rollcontact_version" in h5.attrs
+        assert np.isnan(h5["summary"].attrs["x"])  # numeric on disk: a value that does not apply is NaN
 
 
 def test_write_is_atomic_and_leaves_no_temporary_file(tmp_path):
@@ -59,3 +60,19 @@ def test_is_complete_distinguishes_failed_partial_and_garbage_files(tmp_path):
     assert not is_complete(tmp_path / "failed.h5")
     assert not is_complete(tmp_path / "garbage.h5")
     assert not is_complete(tmp_path / "missing.h5")
+
+
+def test_summary_values_that_do_not_apply_are_numeric_on_disk_and_none_when_read(tmp_path):
+    """A ratcheting run has no u_sd and no periods_to_shakedown: NaN and -1 on disk (readable as numbers, as in
+    a sweep's summary.h5), None when read back; the text 'none' of older files reads as None too."""
+    data = sample()
+    data.summary.update(state="ratcheting", u_sd=None, periods_to_shakedown=None)
+    path = write_run(tmp_path / "run.h5", data)
+    with h5py.File(path) as h5:
+        attrs = h5["summary"].attrs
+        assert np.isnan(float(attrs["u_sd"])) and int(attrs["periods_to_shakedown"]) == -1
+    back = read_run(path)
+    assert back.summary["u_sd"] is None and back.summary["periods_to_shakedown"] is None
+    with h5py.File(path, "a") as h5:
+        h5["summary"].attrs["u_sd"] = "none"
+    assert read_run(path).summary["u_sd"] is None
