@@ -183,9 +183,10 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
                    w=scene.amplitude / hertz.a, W=scene.amplitude, dW_used=path.dW, nx=grid.nx, ny=grid.ny,
                    elements=grid.size, steps=n_done, steps_planned=path.n_steps,
                    iterations=int(np.sum(history["iterations"])) if n_done else 0, wall_time=wall)
-    n_load = int(np.flatnonzero(path.period == 0)[-1]) + 1
-    if n_done >= n_load:
-        summary.update(U_stat=float(U[n_load - 1]), u_stat=float(U[n_load - 1] / U0))
+    # the static shift at f_t: the end of the ramp, before any further force levels (load.levels)
+    n_ramp = scene.load.ramp_steps if scene.Ft > 0 else 0
+    if n_done > n_ramp:
+        summary.update(U_stat=float(U[n_ramp]), u_stat=float(U[n_ramp] / U0))
     if state_label:
         summary["state"] = state_label
     elif path.period.max() == 0:

@@ -8,6 +8,8 @@ import pytest
 
 from cases.cli import main
 from cases.hdf5 import read_run
+from cases.scene import default_scene
+from solver.analytic import CattaneoMindlin, HertzSphere
 
 COARSE = ["--set", "grid.dx=0.4", "--set", "motion.dW=0.4", "--set", "motion.periods=2"]
 
@@ -102,3 +104,20 @@ def test_gross_sliding_is_a_result_the_cli_states_clearly_and_the_file_records(t
     d = read_run(out)
     assert d.status == "complete" and d.summary["state"] == "gross_sliding"
     assert d.summary["stopped_at_step"] == 1 and "friction capacity" in d.summary["state_message"]
+
+
+def test_u_stat_is_the_static_shift_at_f_t_also_when_further_force_levels_follow(tmp_path, capsys):
+    """With load.levels the loading phase goes on past f_t (here unloading and reversal to -f_t); u_stat is the
+    shift at the end of the ramp to f_t: Cattaneo-Mindlin (seed Eq. 4, within 1 %, pitfall P10), not the shift
+    after the last level (a review found the reversed value labelled with f_t)."""
+    out = tmp_path / "levels.h5"
+    assert main(["run", "-o", str(out), "--set", "grid.dx=0.2", "--set", "motion.periods=0", "--set", "load.ft=0.46",
+                 "--set", "load.ramp_steps=3", "--set", "load.levels=[0.0, -0.46]"]) == 0
+    d = read_run(out)
+    s = d.summary
+    cm = CattaneoMindlin(HertzSphere(40.0, default_scene().material_pair.E_star, 21.19), 0.93,
+                         default_scene().material_pair.G_star)
+    assert s["U_stat"] == pytest.approx(cm.shift(0.46), rel=0.01)
+    assert s["U_stat"] == d.history["U_x"][3]  # step 3 ends the ramp (step 0: Fn alone)
+    assert d.history["U_x"][-1] < -0.9 * s["U_stat"]  # the reversal reached about -U_stat (Mindlin-Deresiewicz)
+    assert f"U_stat = {s['U_stat']:.6f} mm" in capsys.readouterr().out
