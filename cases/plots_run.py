@@ -60,7 +60,8 @@ def history_figure(views: list[RunView]):
                  color=v.colour, lw=1.2)
         # MDR closed forms (seed Eqs. 12, 15, 16) at this (f_t, w), drawn once per (f_t, w)
         key = (round(v.f_t, 6), round(v.w, 6))
-        if v.w <= 0 or key in done or not 0 <= v.f_t <= 1:
+        # they hold for a monotonic ramp to f_t; after further force levels (load.levels) they do not apply
+        if v.w <= 0 or key in done or not 0 <= v.f_t <= 1 or v.scene.load.levels:
             continue
         done.add(key)
         beyond = []
@@ -81,10 +82,13 @@ def history_figure(views: list[RunView]):
     ax.legend(handles=handles + extra, fontsize=8, loc="lower right")
     ax.set_ylabel("$u = U/U_0$ (along $F_t$)")
     ax.grid(alpha=0.3)
-    ax.set_ylim(bottom=0)
+    if min(float(np.min(v.u(), initial=0.0)) for v in views) >= 0.0:
+        ax.set_ylim(bottom=0)  # else (reversed loads) the negative part would be cut off
     ax2.set_ylabel("stick area /\ncontact area")
     ax2.set_title("stick fraction per step (elements at the traction bound count as slip)", fontsize=8)
-    ax2.set_xlabel("periods of the oscillation (0 = end of loading)")
+    oscillating = any(v.steps_per_period() for v in views)
+    ax2.set_xlabel("periods of the oscillation (0 = end of loading)" if oscillating
+                   else "steps (0 = end of loading)")
     ax2.set_ylim(0, 1.05)
     ax2.grid(alpha=0.3)
     ax.set_title(views[0].title if len(views) == 1 else "Rigid shift along $F_t$ (seed Fig. 4)")

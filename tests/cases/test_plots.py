@@ -191,3 +191,21 @@ def test_main_cli_registers_plot_and_compare():
     parser = build_parser()
     assert parser.parse_args(["plot", "x.h5", "--step", "3"]).step == 3
     assert parser.parse_args(["compare", "a.h5", "b.h5"]).b == "b.h5"
+
+
+def test_history_of_a_reversed_load_shows_its_negative_shift_and_no_mdr_lines(tmp_path):
+    """load.levels = [0, -f_t] (Mindlin-Deresiewicz reversal, then rolling): u goes negative, so the axis must not
+    start at 0 (it did: the whole oscillation was cut off), and the MDR u_sd of a monotonic ramp to f_t do not
+    apply. A static run's axis counts steps, not periods."""
+    from cases.plots_run import history_figure
+    rolled = open_run(_run(tmp_path / "rev.h5", "load.ramp_steps=2", "load.levels=[0.0, -0.46]"))
+    fig = history_figure([rolled])
+    ax, ax2 = fig.axes[:2]
+    assert rolled.u().min() < -0.3 and ax.get_ylim()[0] <= rolled.u().min()  # u_stat(0.46) = 0.34, reversed
+    assert not any("MDR" in t.get_text() for t in ax.get_legend().get_texts())
+    assert "periods" in ax2.get_xlabel()
+    static = open_run(_run(tmp_path / "static.h5", "motion.periods=0"))
+    fig = history_figure([static])
+    assert fig.axes[1].get_xlabel().startswith("steps") and fig.axes[0].get_ylim()[0] == 0.0
+    assert any("MDR" in t.get_text() for t in history_figure([open_run(_run(tmp_path / "mono.h5"))]).axes[0]
+               .get_legend().get_texts())
