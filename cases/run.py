@@ -15,8 +15,8 @@ import time
 
 import numpy as np
 
-from bem.errors import GrossSlidingError, RollcontactError
-from bem.grid import Grid, contact_box
+from bem.errors import GrossSlidingError, InputError, RollcontactError, SceneError
+from bem.grid import MAX_ELEMENTS, Grid, contact_box
 from bem.operator import HalfSpaceOperator
 from solver.analytic import CattaneoMindlin, HertzSphere
 from solver.normal import NormalParams
@@ -55,8 +55,8 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     """Grid just large enough for every contact the path can produce, plus the scene's margin.
 
     The Hertz semi-axes of an ellipse are estimated from the equivalent sphere, c (Rx/Ry)^(+-1/3), with
-    a 10 % allowance; the run stops with ContactEdgeError if a contact still reaches the edge. Without a
-    path, the centres are the extremes of the scene's oscillation (0 and +-W along the rolling direction),
+    a 10 % allowance; the run stops with ContactEdgeError if a contact still reaches the edge. The margin is
+    at least one element (max(dx, dy)). Without a path, the centres are the extremes of the scene's oscillation (0 and +-W along the rolling direction),
     so an over-large scene is refused (InputError, bem.grid.MAX_ELEMENTS) before its path is built.
     """
     rx, ry = scene.radii
@@ -71,7 +71,21 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
         centres = np.array([(0.0, 0.0), reach, -reach])
     else:
         centres = np.zeros((1, 2))
-    return Grid.covering(*contact_box(semi_x, semi_y, centres, scene.grid.margin), dx, dy)
+    # at least one element of margin: with half an element the discrete contact, slightly wider than Hertz's,
+    # touched the grid's edge at step 0 (ContactEdgeError) on the paper scene
+    margin = max(scene.grid.margin, dx, dy)
+    try:
+        return Grid.covering(*contact_box(semi_x, semi_y, centres, margin), dx, dy)
+    except InputError as exc:  # too many elements: name the keys that set the size
+        x0, x1, y0, y1 = contact_box(semi_x, semi_y, centres, 0.0)
+        w0, h0 = x1 - x0, y1 - y0
+        # largest margin m with (w0 + 2m)(h0 + 2m) <= MAX_ELEMENTS dx dy
+        m_max = (math.sqrt((w0 - h0) ** 2 + 4.0 * MAX_ELEMENTS * dx * dy) - (w0 + h0)) / 4.0
+        hint = (f"the allowed range at this dx, dy and amplitude is [grid] margin <= {m_max:.4g} mm"
+                if m_max >= max(dx, dy) else "even without a margin the swept contact needs more elements: use a "
+                "larger [grid] dx or a smaller [motion] W or w")
+        raise SceneError(f"{exc} ([grid] margin = {scene.grid.margin!r} mm, [motion] W = {scene.amplitude:.4g} mm); "
+                         f"{hint}") from None
 
 
 def field_steps(scene: Scene, path: LoadPath) -> np.ndarray:

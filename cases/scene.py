@@ -59,7 +59,9 @@ class Geometry:
 @dataclass
 class Load:
     Fn: float = _spec(21.19, 0, INF, lo_open=True, hi_open=True, unit="N", doc="normal force")
-    mu: float = _spec(0.93, 0, 10, lo_open=True, doc="friction coefficient")
+    # from 1e-6: the tangential problem scales with mu, but squared tractions underflow far below it (mu = 1e-200
+    # gave u_stat 1.6 % off, silently)
+    mu: float = _spec(0.93, 1e-6, 10, doc="friction coefficient")
     ft: float | None = _spec(None, 0, 1, doc="tangential force / (mu Fn)")
     Ft: float | None = _spec(None, 0, INF, hi_open=True, unit="N", doc="tangential force")
     load_angle: float = _spec(0.0, -360, 360, unit="deg", doc="direction of Ft from the x axis")
@@ -82,7 +84,8 @@ class GridSpec:
     dx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                              doc="element size in x (default: the smaller Hertz semi-axis / 12, 2 digits)")
     dy: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="element size in y (default dx)")
-    margin: float = _spec(0.6, 0, INF, hi_open=True, unit="mm", doc="extra width around the swept contact")
+    margin: float = _spec(0.6, 0, INF, hi_open=True, unit="mm",
+                          doc="extra width around the swept contact (at least one element is kept)")
 
 
 @dataclass
@@ -285,7 +288,13 @@ class Scene:
         W = self.amplitude
         if not (W > 0 and mo.periods > 0):
             return
-        per_quarter = math.ceil(W / mo.dW - 1e-9)
+        ratio = W / mo.dW
+        given = "" if mo.W is not None else f" (= w a, a = {self.contact_radius:.4g} mm)"
+        if not math.isfinite(ratio):  # W / dW overflowed: math.ceil would raise
+            raise SceneError(f"[motion] W = {W:.5g} mm{given} with dW = {mo.dW!r} mm needs {ratio:.3g} steps per quarter "
+                             f"period; allowed range is W <= {MAX_STEPS * mo.dW / 4:.4g} mm at this dW (at most "
+                             f"{MAX_STEPS} steps per run)")
+        per_quarter = math.ceil(ratio - 1e-9)
         n = n_load + 4 * per_quarter * mo.periods
         if n <= MAX_STEPS:
             return
@@ -298,7 +307,7 @@ class Scene:
             ranges.append(f"periods <= {most_periods} at this dW")
         raise SceneError(
             f"[motion] dW = {mo.dW!r} mm, periods = {mo.periods}: {n} steps ({mo.periods} periods x 4 x "
-            f"ceil(W/dW) = {per_quarter} with W = {W:.5g} mm, plus {n_load} loading steps) exceed the limit of "
+            f"ceil(W/dW) = {per_quarter} with W = {W:.5g} mm{given}, plus {n_load} loading steps) exceed the limit of "
             f"{MAX_STEPS} steps per run; allowed range is " + (", or ".join(ranges) or "a larger dW"))
 
     # --- derived quantities ----------------------------------------------------------------------
@@ -316,7 +325,7 @@ class Scene:
     def equivalent_radius(self) -> float:
         """sqrt(Rx Ry) (mm): the radius of the sphere with the same Gaussian curvature."""
         rx, ry = self.radii
-        return math.sqrt(rx * ry)
+        return math.sqrt(rx) * math.sqrt(ry)  # not sqrt(rx ry): that overflows from rx ry > 1e308
 
     @property
     def contact_radius(self) -> float:
