@@ -71,7 +71,8 @@ class Load:
 
 @dataclass
 class Motion:
-    w: float | None = _spec(None, 0, 1, doc="amplitude / contact radius a")
+    # no upper bound, as for W (w = 2 rolls two radii each way; the MDR limits of the seed hold for w <= 1)
+    w: float | None = _spec(None, 0, INF, hi_open=True, doc="amplitude / contact radius a")
     W: float | None = _spec(None, 0, INF, hi_open=True, unit="mm", doc="amplitude of the centre")
     angle: float = _spec(90.0, -360, 360, unit="deg", doc="rolling direction relative to Ft")
     periods: int = _spec(10, 0, 100000, doc="oscillation periods")

@@ -145,3 +145,13 @@ def test_readme_scene_table_states_the_defaults_of_cases_scene():
             elif default is not None:
                 raise AssertionError(f"README scene table: [{sec}] {f.name} = {default!r} not stated")
         assert set(stated) <= {f.name for f in dc_fields(klass)}, (sec, stated)
+
+
+def test_w_and_W_share_one_range():
+    """w = W/a was limited to [0, 1] while W = 10 mm (w = 2.09) ran: both are open above now (the step limit
+    bounds them)."""
+    s = default_scene().with_overrides(["motion.w=1.5"])
+    assert s.amplitude == pytest.approx(1.5 * s.contact_radius)
+    assert default_scene().with_overrides(["motion.W=10"]).amplitude == 10.0
+    with pytest.raises(SceneError, match=r"\[motion\] w = -0.1: allowed range"):
+        default_scene().with_overrides(["motion.w=-0.1"])
