@@ -27,7 +27,7 @@ def _kappas(args):
     """[(label, kappa)] to report, from --kappa, --angle, or the three reference values."""
     if args.kappa is not None:
         lim._check_kappa(args.kappa)
-        return [(f"kappa={args.kappa:g}", float(args.kappa))]
+        return [("given", float(args.kappa))]
     if args.angle is not None:
         return [(f"angle={args.angle:g}deg", lim.kappa_for_angle(args.angle))]
     return [("parallel", lim.KAPPA_PARALLEL), ("perpendicular", lim.KAPPA_PERPENDICULAR),
@@ -56,7 +56,8 @@ def handler(args, out=None) -> int:
             lim._check_w(args.w)
         if args.ft is not None:
             lim._check_ft(args.ft)
-        print("kappa (seed Eq. 13): " + ", ".join(f"{label} {k:g}" for label, k in kappas), file=out)
+        print("kappa (seed Eq. 13): " + ", ".join(f"{label} {k:g}" if label != "given" else f"{k:g} (given)"
+                                                  for label, k in kappas), file=out)
         if args.w is not None:
             w = float(args.w)
             print(f"w = W/a = {w:g}", file=out)

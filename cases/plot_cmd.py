@@ -5,7 +5,7 @@
     rollcontact plot OUTDIR [-o DIR]                   sweep: u_sd(f_t) (Fig. 8), limits (Fig. 9), du (Fig. 11)
     rollcontact compare A.h5 B.h5 [--step N] [-o DIR]  both runs on shared scales, B - A, overlaid histories
 
-Default output folder: `plots/` next to the input (the sweep folder itself for OUTDIR). Every written file
+Default output folder: `plots/` next to a run file, `OUTDIR/plots/` for a sweep folder OUTDIR. Every written file
 is printed. Runs without fields (output.fields = "none", MDR runs) get the history figure and a note.
 Exit codes: 0 written, 2 bad input (missing file, not a run file, step not stored).
 """

@@ -430,9 +430,14 @@ def _is_number(v):
 
 
 def _parse_value(raw: str):
+    """A --set value: TOML, else a number as Python writes it (.5, 1., 1e3: not TOML), else the text."""
     try:
         return tomllib.loads(f"v = {raw}")["v"]
     except tomllib.TOMLDecodeError:
+        pass
+    try:
+        return float(raw) if raw.strip().lower() not in ("nan", "+nan", "-nan") else raw
+    except ValueError:
         return raw
 
 

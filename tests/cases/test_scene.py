@@ -155,3 +155,11 @@ def test_w_and_W_share_one_range():
     assert default_scene().with_overrides(["motion.W=10"]).amplitude == 10.0
     with pytest.raises(SceneError, match=r"\[motion\] w = -0.1: allowed range"):
         default_scene().with_overrides(["motion.w=-0.1"])
+
+
+def test_set_values_accept_numbers_as_python_writes_them():
+    """--set load.ft=.5 and grid.dx=1. are not TOML and were refused as 'expected a number'."""
+    s = default_scene().with_overrides(["load.ft=.5", "grid.dx=1.", "motion.periods=1e1"])
+    assert (s.load.ft, s.grid.dx, s.motion.periods) == (0.5, 1.0, 10)
+    with pytest.raises(SceneError, match="expected a number"):
+        default_scene().with_overrides(["load.ft=.5x"])
