@@ -145,9 +145,20 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
         progress(f"grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = {grid.dy} mm), "
                  f"{path.n_steps} steps, coupling {'on' if op.coupled else 'off'} (beta = {pair.beta:.2e})")
     last_report = time.perf_counter()
+    last = None
+
+    def keep(rec):
+        stored.append(rec.step)
+        nr, tr = rec.normal, rec.tangential
+        for k, v in (("p", nr.pressure), ("u_z", nr.displacement), ("tau_x", tr.traction[0]),
+                     ("tau_y", tr.traction[1]), ("slip_x", tr.slip[0]), ("slip_y", tr.slip[1]),
+                     ("u_x", tr.displacement[0]), ("u_y", tr.displacement[1]), ("region", tr.region)):
+            fields[k].append(v.copy())
+
     try:
         for rec in run_path(op, profile, path, Fn=scene.load.Fn, mu=scene.load.mu, params=params,
                             state=restart):
+            last = rec
             nr, tr, st = rec.normal, rec.tangential, rec.state
             row = dict(step=rec.step, period=int(path.period[rec.step]), W_x=rec.centre[0], W_y=rec.centre[1],
                        approach=nr.approach, Fn=nr.force, contact_area=float(nr.contact.sum()) * dA,
@@ -159,11 +170,7 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
             for k, v in row.items():
                 history[k].append(v)
             if rec.step in snap:
-                stored.append(rec.step)
-                for k, v in (("p", nr.pressure), ("u_z", nr.displacement), ("tau_x", tr.traction[0]),
-                             ("tau_y", tr.traction[1]), ("slip_x", tr.slip[0]), ("slip_y", tr.slip[1]),
-                             ("u_x", tr.displacement[0]), ("u_y", tr.displacement[1]), ("region", tr.region)):
-                    fields[k].append(v.copy())
+                keep(rec)
             if progress and (time.perf_counter() - last_report > 2.0 or rec.step == path.n_steps - 1):
                 last_report = time.perf_counter()
                 progress(f"step {rec.step + 1}/{path.n_steps}  period {row['period']}/{scene.motion.periods}  "
@@ -176,6 +183,11 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
         if isinstance(exc, KeyboardInterrupt):
             _write(scene, out, grid, history, fields, stored, status, error, {}, attrs)
             raise
+    # a run that stopped early (gross sliding, a solver failure) keeps the fields of its last completed step, the
+    # 'last step' that output.fields = "reversals" and "last" promise
+    if (last is not None and scene.output.fields in ("reversals", "last")
+            and (not stored or stored[-1] != last.step)):
+        keep(last)
     wall = time.perf_counter() - t_start
     summary = summarise(scene, path, history, state_label, grid, wall)
     if state_label == "gross_sliding":   # the step that found no equilibrium; the solver's message

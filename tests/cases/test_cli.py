@@ -104,6 +104,8 @@ def test_gross_sliding_is_a_result_the_cli_states_clearly_and_the_file_records(t
     d = read_run(out)
     assert d.status == "complete" and d.summary["state"] == "gross_sliding"
     assert d.summary["stopped_at_step"] == 1 and "friction capacity" in d.summary["state_message"]
+    # the last completed step (Fn alone, step 0) is stored, as output.fields = "reversals" promises
+    assert list(d.field_steps) == [0] and d.fields["p"].shape[0] == 1 and d.fields["p"].max() > 0
 
 
 def test_u_stat_is_the_static_shift_at_f_t_also_when_further_force_levels_follow(tmp_path, capsys):
