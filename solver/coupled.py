@@ -46,7 +46,9 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
 
     Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
     with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
-    iteration alone often needs one product each, since it starts from the converged fields).
+    iteration alone often needs one product each, since it starts from the converged fields). The
+    TangentialResult's `displacement` is the surface displacement A^tt tau + A^tz p (mm), so that
+    s = u - u' - dU between two steps.
     """
     if not (mu > 0):
         raise InputError(f"mu = {mu!r}: the friction coefficient must be > 0")
@@ -86,7 +88,11 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
         change = max(dp, dt)
         p, tau, p_guess = normal.pressure, tang.traction, normal.pressure
         if outer > 1 and change <= coupling_tol:
-            return replace(normal, iterations=n_products), replace(tang, iterations=t_products, steps=t_steps), outer
+            # the solve's displacement is A^tt tau + A^tz (p - p'), the part that makes this step's slip; the
+            # surface displacement is A^tt tau + A^tz p (one coupling product per step)
+            total = tang.displacement - extra + op.tangential_from_pressure(normal.pressure)
+            return (replace(normal, iterations=n_products),
+                    replace(tang, iterations=t_products, steps=t_steps, displacement=total), outer)
     raise ConvergenceError("Panagiotopoulos loop (coupled normal/tangential) did not converge",
                            solver="coupled", iterations=max_outer, residual=change, tol=coupling_tol,
                            regime=f"beta = {op.materials.beta:.4g}, mu = {mu}, "
