@@ -35,7 +35,7 @@ COUPLING_THRESHOLD = 1e-4
 #: at every grid size). It only guards against non-positive values. The floor used to be 1e-3 of the largest
 #: eigenvalue, which grows with the grid's width (the k = 0 value of a 1/r kernel): it clipped 18 % of the
 #: tangential symbol at 511^2 (lambda_min of the preconditioned stick block 0.87 -> 0.97 without) and the normal
-#: one from about 1000^2 (normal Hertz at 1024^2: 18 -> 13 iterations).
+#: one from about 520^2 (normal Hertz at 768^2 / 1024^2: 15 / 18 -> 13 / 13 iterations).
 PRECONDITIONER_FLOOR = 0.05
 
 _wisdom_lock = threading.Lock()

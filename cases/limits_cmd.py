@@ -56,8 +56,7 @@ def handler(args, out=None) -> int:
             lim._check_w(args.w)
         if args.ft is not None:
             lim._check_ft(args.ft)
-        print("kappa (seed Eq. 13): " + ", ".join(f"{label} {k:g}" if label != "given" else f"{k:g} (given)"
-                                                  for label, k in kappas), file=out)
+        print("kappa (seed Eq. 13): " + ", ".join(f"{label} {k:g}" for label, k in kappas), file=out)
         if args.w is not None:
             w = float(args.w)
             print(f"w = W/a = {w:g}", file=out)

@@ -56,8 +56,9 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
 
     The Hertz semi-axes of an ellipse are estimated from the equivalent sphere, c (Rx/Ry)^(+-1/3), with
     a 10 % allowance; the run stops with ContactEdgeError if a contact still reaches the edge. The margin is
-    at least one element (max(dx, dy)). Without a path, the centres are the extremes of the scene's oscillation (0 and +-W along the rolling direction),
-    so an over-large scene is refused (InputError, bem.grid.MAX_ELEMENTS) before its path is built.
+    at least one element (max(dx, dy)). Without a path, the centres are the extremes of the scene's
+    oscillation (0 and +-W along the rolling direction), so an over-large scene is refused (SceneError,
+    bem.grid.MAX_ELEMENTS) before its path is built.
     """
     rx, ry = scene.radii
     semi_x, semi_y = scene.semi_axes
@@ -84,8 +85,8 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
         hint = (f"the allowed range at this dx, dy and amplitude is [grid] margin <= {m_max:.4g} mm"
                 if m_max >= max(dx, dy) else "even without a margin the swept contact needs more elements: use a "
                 "larger [grid] dx or a smaller [motion] W or w")
-        raise SceneError(f"{exc} ([grid] margin = {scene.grid.margin!r} mm, [motion] W = {scene.amplitude:.4g} mm); "
-                         f"{hint}") from None
+        raise SceneError(f"{exc} ([grid] margin = {scene.grid.margin!r} mm, [motion] W = "
+                         f"{scene.amplitude:.4g} mm); {hint}") from None
 
 
 def field_steps(scene: Scene, path: LoadPath) -> np.ndarray:

@@ -292,9 +292,9 @@ class Scene:
         ratio = W / mo.dW
         given = "" if mo.W is not None else f" (= w a, a = {self.contact_radius:.4g} mm)"
         if not math.isfinite(ratio):  # W / dW overflowed: math.ceil would raise
-            raise SceneError(f"[motion] W = {W:.5g} mm{given} with dW = {mo.dW!r} mm needs {ratio:.3g} steps per quarter "
-                             f"period; allowed range is W <= {MAX_STEPS * mo.dW / 4:.4g} mm at this dW (at most "
-                             f"{MAX_STEPS} steps per run)")
+            raise SceneError(f"[motion] W = {W:.5g} mm{given} with dW = {mo.dW!r} mm needs {ratio:.3g} steps "
+                             f"per quarter period; allowed range is W <= {MAX_STEPS * mo.dW / 4:.4g} mm at this "
+                             f"dW (at most {MAX_STEPS} steps per run)")
         per_quarter = math.ceil(ratio - 1e-9)
         n = n_load + 4 * per_quarter * mo.periods
         if n <= MAX_STEPS:
@@ -308,8 +308,8 @@ class Scene:
             ranges.append(f"periods <= {most_periods} at this dW")
         raise SceneError(
             f"[motion] dW = {mo.dW!r} mm, periods = {mo.periods}: {n} steps ({mo.periods} periods x 4 x "
-            f"ceil(W/dW) = {per_quarter} with W = {W:.5g} mm{given}, plus {n_load} loading steps) exceed the limit of "
-            f"{MAX_STEPS} steps per run; allowed range is " + (", or ".join(ranges) or "a larger dW"))
+            f"ceil(W/dW) = {per_quarter} with W = {W:.5g} mm{given}, plus {n_load} loading steps) exceed the "
+            f"limit of {MAX_STEPS} steps per run; allowed range is " + (", or ".join(ranges) or "a larger dW"))
 
     # --- derived quantities ----------------------------------------------------------------------
     @property
@@ -436,7 +436,7 @@ def _parse_value(raw: str):
     except tomllib.TOMLDecodeError:
         pass
     try:
-        return float(raw) if raw.strip().lower() not in ("nan", "+nan", "-nan") else raw
+        return float(raw)  # a NaN is refused with the key by the field check, like TOML's nan
     except ValueError:
         return raw
 
