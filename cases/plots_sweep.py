@@ -154,7 +154,7 @@ def _base_angle(folder: Path):
 
 
 def read_limits(path) -> list[dict]:
-    """Rows of limits.csv (cases.sweep.LIMIT_COLUMNS): the searched coordinate ('f_t' or 'w') bracketed by
+    """Rows of limits.csv (cases.limit_search.LIMIT_COLUMNS): the searched coordinate ('f_t' or 'w') bracketed by
     lower/upper (midpoint), the other one fixed. Returns dicts with f_t, w (midpoints), f_err, w_err
     ([below, above] or None) and angle (deg; from a motion.angle column, else limits.h5's base scene, else 90).
     Failed rows are left out."""

@@ -1,4 +1,4 @@
-"""`rollcontact sweep` and `rollcontact limit-search` (engine: cases.sweep).
+"""`rollcontact sweep` and `rollcontact limit-search` (engines: cases.sweep, cases.limit_search).
 
     rollcontact sweep SCENE.toml --vary load.ft=0.1:0.9:9 --vary motion.w=0.1,0.23,0.4 \
         --vary motion.angle=0,90 -o OUTDIR [--jobs N] [--set k=v ...] [--scheduler ADDRESS]
@@ -57,9 +57,9 @@ def _scene(args) -> Scene:
 
 
 def _sigterm_as_interrupt():
-    """Make SIGTERM behave like Ctrl-C (SIGINT) so the sweep stops its workers and writes its summary (the flag makes the
-    sweep raise it again if the exception was swallowed, see `cases.sweep.interrupt_requested`)."""
-    from .sweep import interrupt_requested
+    """Make SIGTERM behave like Ctrl-C (SIGINT) so the sweep stops its workers and writes its summary (the flag
+    makes the sweep raise it again if the exception was swallowed, see `cases.workers.interrupt_requested`)."""
+    from .workers import interrupt_requested
 
     def handler(signum, frame):
         interrupt_requested.set()
@@ -89,7 +89,7 @@ def sweep_handler(args) -> int:
 
 
 def limit_handler(args) -> int:
-    from .sweep import search_limits
+    from .limit_search import search_limits
     if not args.vary:
         print("rollcontact limit-search: error: give --vary motion.w=... (or --vary load.ft=...)",
               file=sys.stderr)

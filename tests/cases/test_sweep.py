@@ -19,8 +19,11 @@ import pytest
 
 from bem.errors import SceneError
 from cases.hdf5 import is_complete, read_run
+from cases.limit_search import search_limits
 from cases.scene import Scene, shipped_scene_path
-from cases.sweep import (parse_vary, plan_sweep, read_summary, run_file_name, run_sweep, search_limits)
+from cases.sweep import run_sweep
+from cases.sweep_plan import parse_vary, plan_sweep, run_file_name
+from cases.sweep_table import read_summary
 
 COARSE = ["grid.dx=0.6", "grid.dy=0.6", "motion.dW=10", "motion.periods=6", "solver.shakedown_tol=1e-3"]
 VARY_2x2x2 = ["load.ft=0.3,0.9", "motion.w=0.15,0.3", "motion.angle=0,90"]
@@ -274,7 +277,7 @@ def test_a_worker_still_compiles_numba_code_after_its_set_up():
     # Regression: the worker set-up used to change NUMBA_NUM_THREADS after numba was imported, and every later
     # compilation in that worker then raised RuntimeError - which a sweep meets whenever numba's on-disk cache
     # misses (a fresh install, or edited sources): all runs failed. A fresh njit function forces a compilation.
-    code = ("import os, numba; from cases.sweep import _worker_init; _worker_init(os.getpid()); "
+    code = ("import os, numba; from cases.workers import _worker_init; _worker_init(os.getpid()); "
             "print(numba.njit(lambda x: x + 1)(1))")
     out = subprocess.run([sys.executable, "-c", code], cwd=Path(__file__).resolve().parents[2],
                          capture_output=True, text=True, timeout=300)

@@ -5,9 +5,10 @@ Real files on a coarse grid: a BEM run, an MDR run, a sweep's summary.h5 and a l
 import h5py
 import pytest
 
+from cases.limit_search import search_limits
 from cases.run import run_scene
 from cases.scene import Scene, shipped_scene_path
-from cases.sweep import run_sweep, search_limits
+from cases.sweep import run_sweep
 
 COARSE = ["grid.dx=0.6", "grid.dy=0.6", "motion.dW=10", "motion.periods=3", "solver.shakedown_tol=1e-3"]
 
