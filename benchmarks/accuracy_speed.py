@@ -41,10 +41,12 @@ from pathlib import Path
 
 import numpy as np
 
+from accuracy_speed_chart import chart, pareto
 from bem import Grid, HalfSpaceOperator, MaterialPair
 from bem.errors import RollcontactError
 from cases.run import run_scene
 from cases.scene import default_scene
+from peers import contactmechanics_solver, tamaas_solver
 from solver.analytic import CattaneoMindlin, HertzSphere
 from solver.normal import NormalParams, solve_normal
 from solver.tangential import TangentialParams, solve_tangential
@@ -90,56 +92,7 @@ def fitted_order(rows, key_h, key_err):
     return float(np.polyfit(x, y, 1)[0])
 
 
-def pareto(points):
-    """Indices of the points (time, error) not dominated by another one (less time and less error)."""
-    idx = []
-    for i, (t, e) in enumerate(points):
-        if not any((t2 <= t and e2 <= e and (t2, e2) != (t, e)) for t2, e2 in points):
-            idx.append(i)
-    return sorted(idx, key=lambda i: points[i][0])
-
-
 # --- (a) Hertz -------------------------------------------------------------------------------------
-
-def _tamaas_solver():
-    try:
-        import tamaas as tm
-    except ImportError:
-        return None
-    tm.set_log_level(tm.LogLevel.error)
-
-    def solve(grid, h, tol):
-        ny, nx = grid.shape
-        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [ny * grid.dy, nx * grid.dx], [ny, nx])
-        model.E, model.nu = HERTZ.E_star, 0.0          # tamaas' Boussinesq uses E/(1 - nu^2) = E*
-        tm.ModelFactory.registerNonPeriodic(model, "dcfft")
-        solver = tm.PolonskyKeerRey(model, np.ascontiguousarray(-h), tol)
-        solver.setIntegralOperator("dcfft")
-        solver.setMaxIterations(10000)
-        solver.solve(FN / (nx * ny * grid.cell_area))
-        return np.array(model.traction).reshape(ny, nx), None
-    return solve
-
-
-def _contactmechanics_solver():
-    try:
-        from ContactMechanics import FreeFFTElasticHalfSpace
-        from ContactMechanics.Systems import NonSmoothContactSystem
-        from SurfaceTopography import Topography
-    except ImportError:
-        return None
-
-    def solve(grid, h, tol):
-        ny, nx = grid.shape
-        size = (nx * grid.dx, ny * grid.dy)
-        substrate = FreeFFTElasticHalfSpace((nx, ny), HERTZ.E_star, size)   # young = contact modulus E*
-        system = NonSmoothContactSystem(substrate, Topography(np.ascontiguousarray(-h.T), size))
-        res = system.minimize_proxy(external_force=FN, pentol=tol * HERTZ.approach, maxiter=100000)
-        if not res.success:
-            raise RuntimeError(f"ContactMechanics: {res.message}")
-        return res.jac.T / grid.cell_area, float(res.offset)
-    return solve
-
 
 def hertz_sweep(ratios, tols, repeats, peers):
     a = HERTZ.a
@@ -298,57 +251,6 @@ def usd_reference(rows, angle, dxs, dWs, dW_ref_dx=0.2):
                 dW_correction=corr_fine, uncertainty=abs(lim_dx - vals_dx[-1]) * 0.5 + abs(corr_fine) * 0.5)
 
 
-# --- chart ------------------------------------------------------------------------------------------
-
-def chart(hertz, catt, usd, refs, path):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
-    ax = axes[0]
-    styles = {"rollcontact": "o-", "tamaas": "s--", "contactmechanics": "^:"}
-    tol_show = 1e-8
-    for code in ("rollcontact", "tamaas", "contactmechanics"):
-        pts = sorted([r for r in hertz if r["code"] == code and r["tol"] == tol_show and "time_s" in r],
-                     key=lambda r: r["dx"], reverse=True)
-        if pts:
-            ax.loglog([r["time_s"] for r in pts], [abs(r["d_err"]) for r in pts], styles[code],
-                      label=f"{code} (tol 1e-8)")
-            for r in pts if code == "rollcontact" else []:
-                ax.annotate(f"{r['a_over_dx']:.0f}", (r["time_s"], abs(r["d_err"])), fontsize=7)
-    other = [r for r in hertz if r["code"] == "rollcontact" and r["tol"] != tol_show]
-    ax.loglog([r["time_s"] for r in other], [abs(r["d_err"]) for r in other], ".", color="grey",
-              label="rollcontact, other tol")
-    ax.set(xlabel="solve wall time (s)", ylabel="|d/d_Hertz - 1|", title="(a) Hertz approach (labels: a/dx)")
-    ax.legend(fontsize=7)
-    ax = axes[1]
-    for tol in sorted({r["tol"] for r in catt}):
-        pts = sorted([r for r in catt if r["tol"] == tol and "time_s" in r], key=lambda r: r["dx"], reverse=True)
-        ax.loglog([r["time_s"] for r in pts], [max(abs(r["U_err"]), 1e-9) for r in pts], "o-", label=f"tol {tol:.0e}")
-    ax.set(xlabel="tangential solve wall time (s)", ylabel="|U/U_Mindlin - 1|",
-           title="(b) Cattaneo-Mindlin f_t = 0.5 (nu = 0, beta = 0)")
-    ax.legend(fontsize=7)
-    ax = axes[2]
-    for angle, mk in ((90, "o"), (0, "s")):
-        ref = refs.get(str(angle))
-        if not ref:
-            continue
-        pts = [r for r in usd if r["angle"] == angle and "u_end" in r]
-        t = [r["time_s"] for r in pts]
-        e = [max(abs(r["u_end"] / ref["reference"] - 1), 1e-7) for r in pts]
-        ax.loglog(t, e, mk, label=f"{'perpendicular' if angle == 90 else 'parallel'}", alpha=0.7)
-        for i in pareto(list(zip(t, e))):
-            r = pts[i]
-            ax.annotate(f"{r['dx']:g}/{r['dW']:g}/{r['tol']:.0e}", (t[i], e[i]), fontsize=6)
-    ax.axhline(0.01, color="k", lw=0.7, ls="--")
-    ax.set(xlabel="run wall time (s, 10 periods)", ylabel="|u_sd/u* - 1|",
-           title="(c) u_sd, paper scene (labels: Pareto dx/dW/tol)")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="coarse grids only (a/dx <= 24; dx >= 0.2 for u_sd)")
@@ -365,7 +267,8 @@ def main():
         dxs, dWs = (0.8, 0.4, 0.2, 0.1), (0.8, 0.4, 0.2, 0.1)
     peers = {}
     if not args.no_peers:
-        for name, make in (("tamaas", _tamaas_solver), ("contactmechanics", _contactmechanics_solver)):
+        for name, make in (("tamaas", lambda: tamaas_solver(HERTZ.E_star, FN)),
+                           ("contactmechanics", lambda: contactmechanics_solver(HERTZ.E_star, FN, HERTZ.approach))):
             s = make()
             if s is not None:
                 peers[name] = s
