@@ -54,7 +54,7 @@ def breakdown(op, solve, repeats):
         if path.endswith("operator.py") and name in ("normal", "normal_inverse"):
             parts[name] += cumtime / repeats
             calls += ncalls if name == "normal" else 0
-        elif path.endswith("normal.py") and name in KERNELS:
+        elif path.endswith("_normal_kernels.py") and name in KERNELS:
             parts["kernels"] += tottime / repeats
     parts["rest"] = total - sum(parts.values())
     parts["total"] = total

@@ -1,4 +1,4 @@
-"""1-D MDR simulator of oscillating rolling (solver.mdr; theory.md §8.2-8.3, seed Eqs. 4-5, 12).
+"""1-D MDR simulator of oscillating rolling (solver.mdr, mdr_step, _mdr_kernels, mdr_bisection; theory.md §8.2-8.3, seed Eqs. 4-5, 12).
 
 Scene of the seed (Table 1, pitfalls P1-P5): R = 40 mm, mu = 0.93, Fn = 21.19 N, steel on rubber.
 Runtime: every run below takes 3-150 ms (numba kernel, ~40 us per step at 4001 springs).
@@ -12,8 +12,10 @@ from bem.errors import InputError
 from bem.materials import MaterialPair
 from solver import mdr_limits as L
 from solver.analytic import HertzSphere
-from solver.mdr import (_approach_kernel, _rigid_shift_kernel, approach_for_force, rigid_shift,
-                        shakedown_limit_ft, simulate_mdr)
+from solver._mdr_kernels import _approach_kernel, _rigid_shift_kernel
+from solver.mdr import simulate_mdr
+from solver.mdr_bisection import shakedown_limit_ft
+from solver.mdr_step import approach_for_force, rigid_shift
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 SCENE = dict(R=40.0, E_star=PAIR.E_star, G_star=PAIR.G_star, Fn=21.19, mu=0.93)
