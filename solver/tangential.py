@@ -52,7 +52,7 @@ sequential and grows with the grid.
 
 Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
 contacts of 16000 elements and more, a quarter of a product each); the element loops are numba kernels
-(`solver._tangential_kernels`, `solver._preconditioner`) on preallocated buffers. The displacement
+(`solver._tangential_{division,cg,moves}`, `solver._preconditioner`) on preallocated buffers. The displacement
 u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation, projection) are
 added with the self coefficients only, and u is recomputed exactly (one extra `op.tangential`) after steps
 that changed the division by projection and always before convergence is accepted. While the division is

@@ -410,7 +410,7 @@ def test_previous_displacement_and_memo_give_the_same_step(scene):
 def test_start_placement_keeps_elements_on_the_bound_and_meets_the_force(scene):
     """The start is put on the force constraint by shifting only the elements inside their disc: elements on
     the bound stay on it (same traction), |tau| <= g everywhere and sum tau dA = F to round-off."""
-    from solver import _tangential_kernels as K
+    from solver import _tangential_division as K
     from solver._force_projection import place_on_force
     res = scene.cattaneo(0.5)
     g, dA = scene.bound, scene.grid.cell_area
@@ -485,7 +485,7 @@ def test_turn_direction_selects_only_large_reversed_slips():
     and exceeds big g; smaller reversed slips (left to the release rule) and stick elements get no direction. At
     t = 1 `apply_flip` puts the element on its rim opposite to the slip, u changes by the self coefficients
     times the traction change (exact = False), and at t < 1 the element lies inside its disc, in stick."""
-    from solver import _tangential_kernels as K
+    from solver import _tangential_moves as K
     g = np.array([[1.0, 1.0, 2.0]])
     region = np.array([[2, 2, 1]], np.int8)
     tau0 = np.array([[[1.0, 0.0, 0.5]], [[0.0, 1.0, 0.0]]])
@@ -527,7 +527,7 @@ def test_turns_of_reversed_slips_never_raise_the_energy(scene, dense, monkeypatc
     elements) and the dense block of the turned elements (DENSE_TURNS raised to take 67 turns)."""
     from solver import _force_projection as FP
     from solver import _tangcg as C
-    from solver import _tangential_kernels as K
+    from solver import _tangential_division as K
     from solver._tangcg import ProjectedTangCG
     monkeypatch.setattr(C, "DENSE_TURNS", 10.0 if dense else 1.0)
     first = scene.cattaneo(0.5)
