@@ -16,7 +16,7 @@ one of the categories
   near_bound  previous state at f_t 0.7-0.99, new f_t 0.95-0.995 turned by any angle
 
 The step is a strictly convex program, so every start must reach one solution. Checked per case: convergence (any
-exception but GrossSlidingError is a finding); the invariants of tests/solver/test_tangential.py (force balance,
+exception but GrossSlidingError is a finding); the invariants of tests/solver/tangential_helpers.py (force balance,
 |tau| <= g (1 + 1e-9), zero slip in stick to 10 tol a_self max g, slip within acos(0.999) of -tau where resolved);
 displacement = A tau on the whole grid; the traction and shift against a solve from the plain start with the
 product memo cleared (flag above 1e-5 max g / 1e-5 relative); for a prescribed shift, the force-mode solve at the

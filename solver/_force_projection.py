@@ -12,8 +12,9 @@ import math
 import numpy as np
 
 from bem.errors import ConvergenceError, InputError
-from ._tangential_kernels import ON_BOUND, _jit, _mag
-from ._tangential_kernels import restore_force as _kernel_restore_force
+from ._tangential_common import _jit, _mag
+from ._tangential_division import ON_BOUND
+from ._tangential_moves import restore_force as _kernel_restore_force
 
 
 _NO_RING = np.zeros((1, 1), np.int8)

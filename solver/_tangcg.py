@@ -18,7 +18,9 @@ import numpy as np
 from bem.errors import ConvergenceError
 from . import _force_projection as FP
 from . import _preconditioner as PC
-from . import _tangential_kernels as K
+from . import _tangential_cg as KC
+from . import _tangential_division as KD
+from . import _tangential_moves as KM
 
 #: Largest tangent move of a slip traction per iteration, relative to its bound (about 0.5 rad).
 MAX_TURN = 0.5
@@ -57,7 +59,7 @@ class Workspace:
         f2 = lambda: np.zeros((2, ny, nx))
         self.tau, self.u, self.u_prev, self.w = f2(), f2(), f2(), f2()
         self.res, self.z, self.v, self.av, self.q, self.slip = f2(), f2(), f2(), f2(), f2(), f2()
-        self.nrm = f2()  # unit direction of the slip tractions (written by K.classify)
+        self.nrm = f2()  # unit direction of the slip tractions (written by KD.classify)
         self.d, self.ad = f2(), f2()  # direction of the turns of reversed slip tractions and its product
         self.zero = f2()  # stands for the product of a lagged step's direction, which is not computed
         self.kappa = np.zeros((ny, nx))
@@ -138,12 +140,12 @@ class ProjectedTangCG:
         """Division, shift fit and residual of the current iterate, with up to two rounds of releases (and
         turns of reversed slip tractions in the first). Returns the relative residual."""
         ws, g, dU, tol = self.ws, self.g, self.dU, self.params.tol
-        self.n_stick, _, *gram = K.classify(ws.tau, g, ws.region, ws.nrm, ws.u, ws.u_prev, self.e_arr,
+        self.n_stick, _, *gram = KD.classify(ws.tau, g, ws.region, ws.nrm, ws.u, ws.u_prev, self.e_arr,
                                             self.has_e, ws.w)
         for release_round in range(3):
             if self.force_mode:
-                self.fit_shift(*(gram if release_round == 0 else K.gram_and_fit(ws.nrm, ws.region, ws.w)))
-            _, snmax, rstop = K.residual(ws.nrm, g, ws.region, ws.w, dU[0], dU[1], ws.res, ws.kappa, ws.slip,
+                self.fit_shift(*(gram if release_round == 0 else KD.gram_and_fit(ws.nrm, ws.region, ws.w)))
+            _, snmax, rstop = KC.residual(ws.nrm, g, ws.region, ws.w, dU[0], dU[1], ws.res, ws.kappa, ws.slip,
                                             self.axx, self.ayy)
             # Release slip elements whose slip points along the traction (s.n > 0: the traction must go back
             # inside), as soon as the multiplier says so (TangCG's rule). The last round only evaluates, so that
@@ -157,11 +159,11 @@ class ProjectedTangCG:
             # first round, before any release: the re-classification derives the division afresh.
             if release_round == 0:
                 self.turn_reversed()
-            K.release(ws.nrm, ws.region, ws.w, dU[0], dU[1], 0.0)
+            KD.release(ws.nrm, ws.region, ws.w, dU[0], dU[1], 0.0)
             self.restart = True
 
     def fit_shift(self, gxx, gxy, gyy, bx, by):
-        """dU = least-squares multiplier of the force constraint from the Gram sums of `K.gram_and_fit`."""
+        """dU = least-squares multiplier of the force constraint from the Gram sums of `KD.gram_and_fit`."""
         self.gram = (gxx, gxy, gyy)
         dU = self.dU
         det = gxx * gyy - gxy * gxy
@@ -250,9 +252,9 @@ class ProjectedTangCG:
     def energy(self, t, ut):
         """The step's energy J = 1/2 (t - tau') A (t - tau') + (e - dU).t up to a constant (dU only for a prescribed
         shift; in force mode sum t is fixed), from t and ut = A t."""
-        acc = 0.5 * K.dot(t, ut) - K.dot(t, self.ws.u_prev)
+        acc = 0.5 * KC.dot(t, ut) - KC.dot(t, self.ws.u_prev)
         if self.has_e:
-            acc += K.dot(self.e_arr, t)
+            acc += KC.dot(self.e_arr, t)
         if not self.force_mode:
             acc -= self.dU[0] * float(t[0].sum()) + self.dU[1] * float(t[1].sum())
         return acc
@@ -303,10 +305,10 @@ class ProjectedTangCG:
         if self.restart:
             v[...] = ws.z
         else:
-            K.conjugate(ws.z, v, -zq / self.vq_prev)
+            KC.conjugate(ws.z, v, -zq / self.vq_prev)
         self.matvec(v, av)
         self.steps += 1
-        vq, rv = K.curvature_product(ws.nrm, region, ws.kappa, v, av, ws.q, ws.res)
+        vq, rv = KC.curvature_product(ws.nrm, region, ws.kappa, v, av, ws.q, ws.res)
         if vq <= 0.0 or rv <= 0.0:
             if self.restart:
                 raise ConvergenceError("tangential solver: search direction is not a descent direction",
@@ -314,7 +316,7 @@ class ProjectedTangCG:
                                        tol=self.params.tol, regime=self.regime(region))
             self.restart = True
             return
-        n_clip, dmax, fsx, fsy, self.n_stick = K.step(tau, v, rv / vq, u, av, g, region, self.axx, self.ayy,
+        n_clip, dmax, fsx, fsy, self.n_stick = KM.step(tau, v, rv / vq, u, av, g, region, self.axx, self.ayy,
                                                       MAX_TURN)
         self.restart = n_clip > 0
         self.lag_alpha = rv / vq if (n_clip > 0 and self.lagging) else 0.0
@@ -361,7 +363,7 @@ class ProjectedTangCG:
         # from the carried u: after dense turns (`turn_reversed`) it is exact only up to the self-coefficient
         # updates, so the comparison may err; that costs products (an undo, or a step kept), never accuracy
         j_old, synced_old, reuses_old = self.energy(tau, u), self.synced, self.memo_reuses
-        n_clip, _, fsx, fsy, self.n_stick = K.step(tau, ws.z, self.lag_alpha, u, ws.zero, g, region, self.axx,
+        n_clip, _, fsx, fsy, self.n_stick = KM.step(tau, ws.z, self.lag_alpha, u, ws.zero, g, region, self.axx,
                                                    self.ayy, MAX_TURN)
         self.steps += 1
         if self.force_mode:
@@ -398,7 +400,7 @@ class ProjectedTangCG:
         the number of turned elements."""
         ws, g, dU, axx, ayy = self.ws, self.g, self.dU, self.axx, self.ayy
         tau, u, region, d, ad = ws.tau, ws.u, ws.region, ws.d, ws.ad
-        n_turn, cx, cy = K.flip_direction(tau, ws.nrm, g, region, ws.w, dU[0], dU[1], FLIP_SLIP * self.a_self, d)
+        n_turn, cx, cy = KM.flip_direction(tau, ws.nrm, g, region, ws.w, dU[0], dU[1], FLIP_SLIP * self.a_self, d)
         if n_turn == 0:
             return 0
         n_stick = self.n_stick if self.force_mode else 0
@@ -409,21 +411,21 @@ class ProjectedTangCG:
             dx, dy = d[0, rows, cols], d[1, rows, cols]
             curv = float(dx @ (xx @ dx + 2.0 * (xy @ dy)) + dy @ (yy @ dy))
         if n_stick > 0:
-            K.shift_stick(d, region, -cx / n_stick, -cy / n_stick)
+            KM.shift_stick(d, region, -cx / n_stick, -cy / n_stick)
         if not dense:
             self.matvec(d, ad)
-            curv = K.dot(d, ad)
+            curv = KC.dot(d, ad)
         # -s.d with s = w - dU; d vanishes outside the contact
-        descent = dU[0] * float(d[0].sum()) + dU[1] * float(d[1].sum()) - K.dot(ws.w, d)
+        descent = dU[0] * float(d[0].sum()) + dU[1] * float(d[1].sum()) - KC.dot(ws.w, d)
         if descent <= 0.0:
             return 0  # not a descent direction: the elements are released instead
         t = 1.0 if curv <= descent else descent / curv
-        n_proj = K.apply_flip(tau, d, t, u, ad, not dense, g, region, axx, ayy)
+        n_proj = KM.apply_flip(tau, d, t, u, ad, not dense, g, region, axx, ayy)
         self.synced = self.synced and not dense and n_proj == 0
         if self.force_mode and n_stick == 0:  # the turns moved the force and no stick element took it up
             rims_turned, _ = FP.restore_force(tau, region, g, self.f_cells, u, axx, ayy, self.restore_tol)
             if rims_turned:
                 self.matvec(tau, u)  # not a local correction
             self.synced = rims_turned  # else the elements turned into stick were shifted (self coefficients)
-        K.classify(tau, g, region, ws.nrm, u, ws.u_prev, self.e_arr, self.has_e, ws.w)
+        KD.classify(tau, g, region, ws.nrm, u, ws.u_prev, self.e_arr, self.has_e, ws.w)
         return n_turn

@@ -52,7 +52,7 @@ sequential and grows with the grid.
 
 Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
 contacts of 16000 elements and more, a quarter of a product each); the element loops are numba kernels
-(`solver._tangential_kernels`, `solver._preconditioner`) on preallocated buffers. The displacement
+(`solver._tangential_{division,cg,moves}`, `solver._preconditioner`) on preallocated buffers. The displacement
 u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation, projection) are
 added with the self coefficients only, and u is recomputed exactly (one extra `op.tangential`) after steps
 that changed the division by projection and always before convergence is accepted. While the division is
@@ -100,7 +100,7 @@ would need to remove its own error: a_self in stick, a_tt + kappa for turning a 
 the kappa weight, elements at the contact edge with g ~ 1e-4 max g and a direction error of 1e-9 rad held
 the test for 20 of 86 products at 511^2, where tol 1e-9 was out of reach; measured against a reference at
 tol 1e-11 the traction error was 0.09-0.57 tol max g for tol 1e-4 ... 1e-8 on the Cattaneo grids;
-`tests/solver/test_tangential.py` checks < 3 tol max g.)
+`tests/solver/test_tangential_contract.py` checks < 3 tol max g.)
 |tau| <= g holds to round-off by construction at every iterate, and the force balance in every returned
 result (it is restored before the final exact re-synchronisation).
 """

@@ -1,0 +1,71 @@
+"""Shared set-up of the tangential solver tests (test_tangential_*.py): the seed's Hertz contact, its closed forms
+and the element-by-element check of Coulomb's law and the force balance (theory.md §5, closed forms §7.2).
+
+Scene of the seed (Table 1): rigid-ish sphere R = 40 mm (steel) on rubber (E = 4.35 MPa, nu = 0.5), Fn = 21.19 N,
+mu = 0.93; the pressure comes from `solve_normal`, so sum(mu p) dA = mu Fn exactly. Units mm, N, MPa.
+"""
+import math
+
+import numpy as np
+
+from bem import Grid, HalfSpaceOperator, MaterialPair
+from solver.analytic import CattaneoMindlin, HertzSphere
+from solver.normal import solve_normal
+from solver.tangential import solve_tangential, traction_capacity
+
+R, FN, MU = 40.0, 21.19, 0.93
+MATERIALS = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
+HERTZ = HertzSphere(R, MATERIALS.E_star, FN)
+MINDLIN = CattaneoMindlin(HERTZ, MU, MATERIALS.G_star)
+
+
+class Scene:
+    def __init__(self, dx):
+        a = HERTZ.a
+        self.grid = Grid.covering(-a - 0.6, a + 0.6, -a - 0.6, a + 0.6, dx, dx)
+        self.op = HalfSpaceOperator(self.grid, MATERIALS)
+        X, Y = self.grid.mesh()
+        self.X, self.Y = X, Y
+        self.normal = solve_normal(self.op, (X ** 2 + Y ** 2) / (2 * R), force=FN)
+        self.bound = MU * self.normal.pressure
+        self.zero = np.zeros((2,) + self.grid.shape)
+        self.dx = dx
+
+    def cattaneo(self, f_t, **kw):
+        return solve_tangential(self.op, self.bound, self.zero, force=(f_t * MU * FN, 0.0), **kw)
+
+
+def check_invariants(result, bound, grid, force=None, tol=1e-8, alignment=0.999):
+    """Coulomb's law and the force balance, element by element (theory §5.1).
+
+    * force balance sum tau dA = F to 1e-10 mu Fn (it is held by construction, so only round-off);
+    * |tau| <= g (1 + 1e-9) everywhere and tau = 0 outside the contact;
+    * stick elements: zero slip, to a few tol times (self coefficient x max g) -- the solver's own
+      stopping measure, so the slip left in stick is of the order the tolerance promises;
+    * slip elements: |tau| = g and the slip opposite to the traction (cosine < -0.999), unless the slip
+      itself is at the round-off level of the stopping tolerance.
+    """
+    tau, slip, region = result.traction, result.slip, result.region
+    g = bound
+    dA = grid.cell_area
+    capacity = traction_capacity(bound, grid)
+    assert np.all(np.isfinite(tau)) and np.all(np.isfinite(slip)) and np.all(np.isfinite(result.shift_increment))
+    total = np.array([tau[0].sum(), tau[1].sum()]) * dA
+    np.testing.assert_allclose(result.force, total, rtol=0, atol=1e-12 * capacity)
+    if force is not None:
+        np.testing.assert_allclose(total, force, rtol=0, atol=1e-10 * capacity)
+    mag = np.hypot(tau[0], tau[1])
+    assert np.all(mag <= g * (1 + 1e-9))
+    assert np.all(mag[g == 0] == 0) and np.all(region[g == 0] == 0)
+    scale = max(result.displacement.std(), 1e-300)
+    a_self = 1.0 / (math.pi * MATERIALS.G) * 4 * grid.dx * math.log(1 + math.sqrt(2))  # ~ A^xx(0)
+    slip_tol = 10 * tol * a_self * g.max()
+    stick = region == 1
+    assert np.all(np.hypot(slip[0], slip[1])[stick] <= slip_tol)
+    sl = region == 2
+    np.testing.assert_allclose(mag[sl], g[sl], rtol=1e-9)
+    smag = np.hypot(slip[0], slip[1])
+    big = sl & (smag > 100 * slip_tol)
+    cosang = (tau[0] * slip[0] + tau[1] * slip[1])[big] / (mag[big] * smag[big])
+    assert np.all(cosang < -alignment), cosang.max()
+    assert scale > 0
