@@ -266,6 +266,19 @@ def test_limit_search_brackets_the_shakedown_limit_near_the_closed_forms(base, t
     assert {p: p.stat().st_mtime_ns for p in (tmp_path / "runs").glob("*.h5")} == mtimes
 
 
+def test_limit_search_in_worker_processes_matches_the_serial_search(base, tmp_path):
+    """Two combinations searched in two local worker processes ('forkserver' with cases.limit_search preloaded)
+    give the serial search's brackets and probe counts exactly: the searches are deterministic and a worker runs
+    the same code. The parallel search's probes are its own (separate folders), not reused."""
+    vary = ["motion.w=0.2,0.4"]
+    serial = search_limits(base, vary, tmp_path / "serial", overrides=COARSE, tol=0.1, jobs=1, progress=None)
+    parallel = search_limits(base, vary, tmp_path / "parallel", overrides=COARSE, tol=0.1, jobs=2, progress=None)
+    keys = ("motion.w", "status", "lower", "upper", "probes")
+    assert [tuple(r[k] for k in keys) for r in parallel.rows] == [tuple(r[k] for k in keys) for r in serial.rows]
+    assert [r["status"] for r in parallel.rows] == ["ok", "ok"]
+    assert len(read_summary(tmp_path / "parallel" / "limits.csv")) == 2
+
+
 def test_limit_search_refuses_varying_both_or_neither_coordinate(base, tmp_path):
     with pytest.raises(SceneError, match="not both"):
         search_limits(base, ["motion.w=0.2", "load.ft=0.5"], tmp_path, overrides=COARSE, progress=None)
