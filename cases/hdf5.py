@@ -145,6 +145,19 @@ def is_complete(path) -> bool:
         return False
 
 
+def stored_summary(path) -> dict | None:
+    """Status, error, scene TOML and summary attributes of a run file, without reading the fields (sweeps and
+    limit searches decide from it whether a run is done); None if the file cannot be read."""
+    try:
+        with h5py.File(path, "r") as h5:
+            out = {"status": _str(h5.attrs.get("status", "")), "error": _str(h5.attrs.get("error", "")),
+                   "scene": _str(h5.attrs.get("scene", ""))}
+            out["summary"] = summary_from_attrs(h5["summary"].attrs) if "summary" in h5 else {}
+            return out
+    except (OSError, KeyError):
+        return None
+
+
 def _dataset(group, name, values, **kwargs):
     ds = group.create_dataset(name, data=values, **{k: v for k, v in kwargs.items() if v is not None})
     if name in UNITS:

@@ -15,10 +15,11 @@ import time
 from bem.errors import InputError, RollcontactError, SceneError
 
 from .scene import Scene
-from .sweep import execute_run, is_done, stored_summary
+from .hdf5 import stored_summary
+from .sweep import execute_run, is_done
 from .sweep_plan import _RANGE_DIGITS, PlannedRun, _describe, build_scene, parse_vary, plan_sweep, run_file_name
 from .sweep_table import write_summary
-from .workers import _make_pool, _raise_if_interrupted, default_jobs
+from .workers import _make_pool, _raise_if_interrupted, completed, default_jobs
 
 
 LIMIT_KAPPAS = (1.0, 1.1, 1.5)
@@ -239,19 +240,11 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
     pool = _make_pool(min(jobs, len(plan)), scheduler)
     rows = {}
     try:
-        futures = {}
-        for run in plan:
-            f = pool.submit(_limit_task, base.to_toml(), base.name, list(overrides), run.values, searched,
-                            float(tol), str(runs_dir), str(outdir), progress is not None)
-            futures[f] = run
-        for f in pool.as_completed(list(futures)):
-            run = futures[f]
-            try:
-                row = f.result()
-            except KeyboardInterrupt:
-                raise
-            except Exception as exc:
-                row = dict(run.values, status="failed", error=f"{type(exc).__name__}: {exc}")
+        tasks = [(run, _limit_task, (base.to_toml(), base.name, list(overrides), run.values, searched, float(tol),
+                                     str(runs_dir), str(outdir), progress is not None)) for run in plan]
+        for run, row, failure in completed(pool, tasks):
+            if failure:
+                row = dict(run.values, status="failed", error=failure)
             row["index"] = run.index
             rows[run.index] = row
             write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)
@@ -260,7 +253,6 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
                         if row["status"] != "failed" else f"FAILED ({row['error']})")
                 print(f"limit-search [{len(rows)}/{len(plan)}] {_describe(run.values)}: {what}",
                       file=progress, flush=True)
-            _raise_if_interrupted()
         pool.close()
         _raise_if_interrupted()
     except KeyboardInterrupt:

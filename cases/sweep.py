@@ -42,34 +42,16 @@ import sys
 import time
 import tomllib
 
-import h5py
-
 from bem.errors import InputError, RollcontactError
 
-from .hdf5 import is_complete, summary_from_attrs
+from .hdf5 import is_complete, stored_summary
 from .scene import Scene
 from .sweep_plan import PlannedRun, _describe, parse_vary, plan_sweep
 from .sweep_table import write_summary
-from .workers import _make_pool, _pid_alive, _raise_if_interrupted, default_jobs
+from .workers import _make_pool, _pid_alive, _raise_if_interrupted, completed, default_jobs
 
 
 # ---------------------------------------------------------------------------------------- one run
-def stored_summary(path) -> dict | None:
-    """Status, error, scene TOML and summary attributes of a run file, without reading the fields."""
-    try:
-        with h5py.File(path, "r") as h5:
-            out = {"status": _str(h5.attrs.get("status", "")), "error": _str(h5.attrs.get("error", "")),
-                   "scene": _str(h5.attrs.get("scene", ""))}
-            out["summary"] = summary_from_attrs(h5["summary"].attrs) if "summary" in h5 else {}
-            return out
-    except (OSError, KeyError):
-        return None
-
-
-def _str(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
-
-
 def _stored_row(run: PlannedRun, outdir) -> dict:
     """The summary row of a run whose complete file is on disk."""
     return _row(run, {"status": "complete", "error": "", "summary": stored_summary(run.path)["summary"]}, outdir)
@@ -221,25 +203,16 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     pool = _make_pool(jobs, scheduler) if todo else None
     try:
         if todo:
-            futures = {}
-            for run in todo:
-                f = pool.submit(execute_run, run.scene_toml, run.scene_name, str(run.path))
-                futures[f] = run
-            for f in pool.as_completed(list(futures)):
-                run = futures[f]
-                try:
-                    result = f.result()
-                except KeyboardInterrupt:
-                    raise
-                except Exception as exc:     # a worker that died (BrokenProcessPool) or a non-rollcontact bug
-                    result = {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "summary": {}}
+            tasks = [(run, execute_run, (run.scene_toml, run.scene_name, str(run.path))) for run in todo]
+            for run, result, failure in completed(pool, tasks):
+                if failure:
+                    result = {"status": "failed", "error": failure, "summary": {}}
                 row = _row(run, result, outdir)
                 rows[run.index] = row
                 report.ran += 1
                 report.failed += row["status"] != "complete"
                 bar.update(row)
                 write_summary(outdir, keys, rows.values(), attrs=attrs)
-                _raise_if_interrupted()
             pool.close()
         _raise_if_interrupted()
     except KeyboardInterrupt:

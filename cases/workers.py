@@ -146,6 +146,27 @@ def _make_pool(jobs, scheduler):
 
 
 
+def completed(pool, tasks):
+    """Submit tasks = [(item, fn, args), ...] to the pool and yield (item, result, failure) as they complete.
+
+    failure is None, or 'ExceptionType: message' when the task raised (a worker that died, BrokenProcessPool,
+    or a bug outside the RollcontactErrors that the tasks turn into results themselves); result is then None.
+    KeyboardInterrupt passes through, and `interrupt_requested` is checked after the caller has handled each
+    item (its summary written), so an interrupt loses no finished result."""
+    futures = {}
+    for item, fn, args in tasks:
+        futures[pool.submit(fn, *args)] = item
+    for f in pool.as_completed(list(futures)):
+        try:
+            result, failure = f.result(), None
+        except KeyboardInterrupt:
+            raise
+        except Exception as exc:
+            result, failure = None, f"{type(exc).__name__}: {exc}"
+        yield futures[f], result, failure
+        _raise_if_interrupted()
+
+
 def default_jobs() -> int:
     """Number of usable cores (the default of --jobs)."""
     try:
