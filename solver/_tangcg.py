@@ -372,7 +372,8 @@ class ProjectedTangCG:
         if self.force_mode and n_stick == 0:  # the turns moved the force and no stick element took it up
             rims_turned, _ = FP.restore_force(tau, region, g, self.f_cells, u, axx, ayy, self.restore_tol)
             if rims_turned:
-                self.matvec(tau, u)  # not a local correction
-            self.synced = rims_turned  # else the elements turned into stick were shifted (self coefficients)
+                self.exact_u()  # not a local correction
+            else:
+                self.synced = False  # the elements turned into stick were shifted (self coefficients)
         KD.classify(tau, g, region, ws.nrm, u, ws.u_prev, self.e_arr, self.has_e, ws.w)
         return n_turn
