@@ -28,6 +28,7 @@ from matplotlib.lines import Line2D
 
 from solver import mdr_limits as lim
 
+from .hdf5 import stored_summary
 from .plots import (FIGSIZE, MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR, PlotError, save_figure,
                     setting_colour, setting_of)
 from .scene import Scene
@@ -84,17 +85,18 @@ def _fold(angle: float) -> float:
 
 
 def read_point(path) -> Point:
-    """Summary attributes and scene of one run file (without reading its fields)."""
-    with h5py.File(path, "r") as h5:
-        attrs = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in h5["summary"].attrs.items()}
-        text = h5.attrs["scene"]
-        text = text.decode() if isinstance(text, bytes) else str(text)
-    scene = Scene.from_toml_text(text, name=Path(path).stem, run_limits=False)
+    """Summary attributes and scene of one run file (without reading its fields); OSError if it is not a run
+    file with a summary."""
+    stored = stored_summary(path)
+    if stored is None or not stored["summary"] or not stored["scene"]:
+        raise OSError(f"{path}: not a run file with a summary")
+    attrs = stored["summary"]
+    scene = Scene.from_toml_text(stored["scene"], name=Path(path).stem, run_limits=False)
     f_t = _num(attrs.get("f_t"))
     return Point(file=Path(path).name, f_t=scene.f_t if f_t is None else f_t, w=_num(attrs.get("w")) or 0.0,
                  angle=_fold(scene.motion.angle),
                  mdr=scene.solver.fidelity == "mdr" or attrs.get("fidelity") == "mdr",
-                 state=str(attrs.get("state", "?")), u_sd=_num(attrs.get("u_sd")), du=_num(attrs.get("du")),
+                 state=str(attrs.get("state") or "?"), u_sd=_num(attrs.get("u_sd")), du=_num(attrs.get("du")),
                  u_stat=_num(attrs.get("u_stat")))
 
 
