@@ -29,7 +29,7 @@ def test_near_traction_bound_shift_stays_accurate(scene):
         res = scene.cattaneo(f_t)
         # with no stick element the reported shift is the stick point's displacement, not the multiplier,
         # so the slip directions are opposite to the traction only to a few degrees (cos < -0.99)
-        check_invariants(res, scene.bound, scene.grid, force=(f_t * MU * FN, 0.0), alignment=0.99)
+        check_invariants(res, scene.bound, scene.op, scene.zero, force=(f_t * MU * FN, 0.0), alignment=0.99)
         assert abs(res.shift_increment[0] / MINDLIN.shift(f_t) - 1) < 0.01
 
 
@@ -45,7 +45,7 @@ def test_turned_load_without_stick_element_keeps_the_multiplier(scene):
     F = (0.0, 0.98 * capacity)
     res = solve_tangential(scene.op, scene.bound, first.traction, force=F)
     assert not np.any(res.region == 1)
-    check_invariants(res, scene.bound, scene.grid, force=F, alignment=0.999)
+    check_invariants(res, scene.bound, scene.op, first.traction, force=F, alignment=0.999)
     back = solve_tangential(scene.op, scene.bound, first.traction, shift=tuple(res.shift_increment))
     np.testing.assert_allclose(back.traction, res.traction, rtol=0, atol=1e-6 * scene.bound.max())
     np.testing.assert_allclose(back.force, F, rtol=0, atol=1e-6 * capacity)
@@ -60,7 +60,7 @@ def test_warm_start_far_from_a_turned_load_near_the_bound_converges(scene):
     first = scene.cattaneo(0.75)
     F = (0.99 * capacity * math.cos(1.0), 0.99 * capacity * math.sin(1.0))
     res = solve_tangential(scene.op, scene.bound, first.traction, force=F)
-    check_invariants(res, scene.bound, scene.grid, force=F)
+    check_invariants(res, scene.bound, scene.op, first.traction, force=F)
     cold = solve_tangential(scene.op, scene.bound, first.traction, force=F, initial=scene.zero)
     np.testing.assert_allclose(res.traction, cold.traction, rtol=0, atol=1e-6 * scene.bound.max())
     assert res.iterations < 150  # measured 66
@@ -71,7 +71,7 @@ def test_cold_solve_near_the_bound_converges_on_the_fine_grid(fine_scene, f_t):
     """Used to cycle between release and projection on fine grids; shift within 0.5 % of Mindlin (P10, P12).
     Alignment as in test_near_traction_bound_shift_stays_accurate (stick-point shift at 0.999)."""
     res = fine_scene.cattaneo(f_t)
-    check_invariants(res, fine_scene.bound, fine_scene.grid, force=(f_t * MU * FN, 0.0), alignment=0.99)
+    check_invariants(res, fine_scene.bound, fine_scene.op, fine_scene.zero, force=(f_t * MU * FN, 0.0), alignment=0.99)
     assert abs(res.shift_increment[0] / MINDLIN.shift(f_t) - 1) < 5e-3
 
 
@@ -84,5 +84,5 @@ def test_cold_solve_on_the_512_grid_converges(f_t):
     big = Scene(0.0211)
     assert big.grid.shape == (511, 511)
     res = big.cattaneo(f_t, params=TangentialParams(max_iter=150))
-    check_invariants(res, big.bound, big.grid, force=(f_t * MU * FN, 0.0))
+    check_invariants(res, big.bound, big.op, big.zero, force=(f_t * MU * FN, 0.0))
     assert abs(res.shift_increment[0] / MINDLIN.shift(f_t) - 1) < 5e-3

@@ -19,7 +19,7 @@ def test_warm_start_after_small_load_change_is_cheap(scene):
     fewer products than the cold one (iterations count every op.tangential call)."""
     cold = scene.cattaneo(0.5)
     warm = solve_tangential(scene.op, scene.bound, cold.traction, force=(0.52 * MU * FN, 0.0))
-    check_invariants(warm, scene.bound, scene.grid, force=(0.52 * MU * FN, 0.0))
+    check_invariants(warm, scene.bound, scene.op, cold.traction, force=(0.52 * MU * FN, 0.0))
     assert warm.iterations < cold.iterations
     total = cold.shift_increment[0] + warm.shift_increment[0]
     assert abs(total / MINDLIN.shift(0.52) - 1) < 0.01
@@ -88,7 +88,7 @@ def test_previous_region_changes_the_start_not_the_solution(scene):
     plain = solve_tangential(scene.op, g, scene.zero, force=F, initial=first.traction)
     kept = solve_tangential(scene.op, g, scene.zero, force=F, initial=first.traction,
                             previous_region=first.region)
-    check_invariants(kept, g, scene.grid, force=F)
+    check_invariants(kept, g, scene.op, scene.zero, force=F)
     assert kept.iterations < plain.iterations  # the point of it (measured 13 against 20 products)
     np.testing.assert_allclose(kept.traction, plain.traction, rtol=0, atol=1e-6 * g.max())
     np.testing.assert_allclose(kept.shift_increment, plain.shift_increment, rtol=0,
@@ -128,7 +128,7 @@ def test_profile_step_with_previous_region_converges_to_the_plain_solution(scene
     F = (0.5 * MU * FN, 0.0)
     plain = solve_tangential(scene.op, g2, first.traction, force=F)
     kept = solve_tangential(scene.op, g2, first.traction, force=F, previous_region=first.region)
-    check_invariants(kept, g2, scene.grid, force=F)
+    check_invariants(kept, g2, scene.op, first.traction, force=F)
     assert kept.iterations <= 2 * plain.iterations
     np.testing.assert_allclose(kept.traction, plain.traction, rtol=0, atol=1e-6 * g2.max())
     np.testing.assert_allclose(kept.shift_increment, plain.shift_increment, rtol=0,
@@ -151,7 +151,7 @@ def test_shifted_preconditioner_levels_speed_up_the_warm_step_not_its_answer(fin
     monkeypatch.setattr(PC, "MIN_CONTACT_ELEMENTS", 0)
     shifted = solve_tangential(scene.op, scene.bound, first.traction, force=F)
     for res in (shifted, two_term):
-        check_invariants(res, scene.bound, scene.grid, force=F)
+        check_invariants(res, scene.bound, scene.op, first.traction, force=F)
     g = scene.bound.max()
     np.testing.assert_allclose(shifted.traction, two_term.traction, rtol=0, atol=1e-6 * g)
     np.testing.assert_allclose(shifted.shift_increment, two_term.shift_increment, rtol=0,
