@@ -24,6 +24,7 @@ from cases.scene import Scene, shipped_scene_path
 from cases.sweep import run_sweep
 from cases.sweep_plan import parse_vary, plan_sweep, run_file_name
 from cases.sweep_table import read_summary
+from solver import mdr_limits as L
 
 COARSE = ["grid.dx=0.6", "grid.dy=0.6", "motion.dW=10", "motion.periods=6", "solver.shakedown_tol=1e-3"]
 VARY_2x2x2 = ["load.ft=0.3,0.9", "motion.w=0.15,0.3", "motion.angle=0,90"]
@@ -111,7 +112,15 @@ def test_sweep_2x2x2_writes_8_runs_and_a_summary_with_the_physical_states(refere
     for r in rows:
         assert r["status"] == "complete" and is_complete(out / r["file"])
         if r["load.ft"] == 0.3:
-            assert r["state"] == "shakedown" and 0.2 < r["u_sd"] < 0.4 and r["periods_to_shakedown"] >= 1
+            assert r["state"] == "shakedown" and r["periods_to_shakedown"] >= 1
+            # rolling adds displacement to the static shift (seed Fig. 8), and u_sd follows the MDR closed form
+            # (seed Eqs. 15-16) within the spread of the seed's rounded kappa (+-0.15) plus 1 % for this coarse
+            # grid (a/dx = 8; benchmarks/README, "Accuracy against speed"); measured within 0.005
+            kappa = L.kappa_for_angle(r["motion.angle"])
+            expected = L.u_shakedown(0.3, r["motion.w"], kappa)
+            spread = max(abs(L.u_shakedown(0.3, r["motion.w"], kappa + dk) - expected) for dk in (-0.15, 0.15))
+            assert L.u_stat(0.3) < r["u_sd"]
+            assert abs(r["u_sd"] - expected) < spread + 0.01 * expected, (r, expected, spread)
         else:
             assert r["state"] == "ratcheting" and r["du"] > 0.05 and r["u_sd"] is None
         assert r["steps"] == 26 and r["iterations"] > 0 and r["wall_time"] > 0
