@@ -21,11 +21,11 @@ def test_iteration_budget_exhausted_raises_with_regime(scene):
 
 
 def test_inputs_validated(scene):
-    with pytest.raises(InputError):
+    with pytest.raises(InputError, match=r"exactly one of force=\(Fx, Fy\) N or shift=\(dUx, dUy\) mm"):
         solve_tangential(scene.op, scene.bound, scene.zero)
-    with pytest.raises(InputError):
+    with pytest.raises(InputError, match=r"exactly one of force"):
         solve_tangential(scene.op, scene.bound, scene.zero, force=(1.0, 0.0), shift=(0.0, 0.0))
-    with pytest.raises(InputError):
+    with pytest.raises(InputError, match=r"bound has shape \(54, 55\), the grid is \(55, 55\)"):
         solve_tangential(scene.op, scene.bound[:-1], scene.zero, force=(1.0, 0.0))
 
 

@@ -128,6 +128,7 @@ def test_a_lagged_step_that_raises_the_energy_is_undone(scene):
         d = tau - previous
         return 0.5 * float(np.sum(d * scene.op.tangential(d[0], d[1])))
 
+    undone = False
     for _ in range(20):
         r = it.evaluate()
         lagged = it.lag_due(r)
@@ -139,8 +140,9 @@ def test_a_lagged_step_that_raises_the_energy_is_undone(scene):
                 np.testing.assert_array_equal(ws.tau, tau_before)
                 np.testing.assert_array_equal(ws.u, u_before)
                 assert it.synced == synced
+                undone = True
                 break
-    assert not it.lagging
+    assert undone, "no lagged step was undone in this case (it was the third one when the case was found)"
 
 
 def test_turn_direction_selects_only_large_reversed_slips():
