@@ -10,16 +10,12 @@ Fields are arrays of shape (ny, nx): pressure p and tractions tau_x, tau_y in MP
 (theory.md §0 conventions: u_z positive into the bodies, (u_x, u_y) substrate relative to sphere).
 """
 import math
-import os
-import pickle
-import threading
-from pathlib import Path
 
 import numpy as np
 import pyfftw
 from scipy.fft import next_fast_len
 
-from . import _spectral
+from . import _spectral, _wisdom
 from .errors import InputError
 from .grid import Grid
 from .influence import influence_coefficients
@@ -37,9 +33,6 @@ COUPLING_THRESHOLD = 1e-4
 #: tangential symbol at 511^2 (lambda_min of the preconditioned stick block 0.87 -> 0.97 without) and the normal
 #: one from about 520^2 (normal Hertz at 768^2 / 1024^2: 15 / 18 -> 13 / 13 iterations).
 PRECONDITIONER_FLOOR = 0.05
-
-_wisdom_lock = threading.Lock()
-
 
 def fft_length(n: int) -> int:
     """Smallest even 5-smooth integer >= n: the FFT length used for a dimension needing n points.
@@ -60,50 +53,13 @@ def fft_length(n: int) -> int:
         m += 1
 
 
-def _wisdom_file() -> Path:
-    root = os.environ.get("ROLLCONTACT_CACHE") or os.path.join(
-        os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "rollcontact")
-    return Path(root) / "fftw-wisdom.pkl"
-
-
-_wisdom_loaded = set()   # wisdom files imported by this process
-_planned = set()         # (k, shape, threads, planner) planned by this process: their wisdom is on disk
-
-
-def _load_wisdom():
-    path = _wisdom_file()
-    if path in _wisdom_loaded:
-        return
-    _wisdom_loaded.add(path)
-    try:
-        with open(path, "rb") as fh:
-            pyfftw.import_wisdom(pickle.load(fh))
-    except (OSError, pickle.UnpicklingError, EOFError, TypeError, ValueError):
-        pass
-
-
-def _save_wisdom():
-    path = _wisdom_file()
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        with open(tmp, "wb") as fh:
-            pickle.dump(pyfftw.export_wisdom(), fh)
-        os.replace(tmp, path)
-    except OSError:
-        pass  # a read-only home only costs planning time
-
-
 def _fft_pairs(ks, shape, threads, planner):
     """{k: _FFTPair} for batches of k fields of `shape`. Plans come from the on-disk FFTW wisdom; the wisdom
     is written back only when this process plans a transform for the first time (exporting it costs ms)."""
-    with _wisdom_lock:
-        _load_wisdom()
+    with _wisdom.lock:
+        _wisdom.load()
         pairs = {k: _FFTPair(k, shape, threads, planner) for k in ks}
-        keys = {(k, tuple(shape), threads, planner) for k in ks}
-        if not keys <= _planned:
-            _planned.update(keys)
-            _save_wisdom()
+        _wisdom.save_if_new({(k, tuple(shape), threads, planner) for k in ks})
     return pairs
 
 
