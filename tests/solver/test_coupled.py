@@ -121,3 +121,39 @@ def test_coupled_step_reports_the_surface_displacement_so_that_slip_is_its_chang
     # the solver's residual tolerance (1e-8 of a_self max g) bounds the stick slip: far below 1e-6 dU
     assert np.abs(s[:, stick]).max() < 1e-6 * scale
     assert np.abs(s[:, slip] - t2.slip[:, slip]).max() < 1e-6 * scale
+
+
+def test_forced_coupling_of_identical_materials_reproduces_the_uncoupled_step():
+    """Limiting case beta = 0 (identical materials) with the coupling forced on: the coupling terms A^zt, A^tz vanish,
+    so the nested loop must stop at its second pass (the first one that can compare) with the pressure, traction
+    and shift of the single uncoupled pass, to the solvers' tolerance (1e-8, relative to p_max and mu p_max)."""
+    mats = MaterialPair.from_moduli(70e3, 0.33, 70e3, 0.33)
+    assert mats.beta == 0.0
+    grid, forced, h = _setup(mats, coupling=True)
+    _, plain_op, _ = _setup(mats)
+    assert forced.coupled and not plain_op.coupled
+    zero_t = np.zeros((2,) + grid.shape)
+    F = (0.5 * MU * FN, 0.0)
+    n1, t1, outer = solve_coupled_step(forced, h, FN, F, None, zero_t, mu=MU)
+    n0, t0, one = solve_coupled_step(plain_op, h, FN, F, None, zero_t, mu=MU)
+    assert outer == 2 and one == 1
+    pmax = n0.pressure.max()
+    assert np.abs(n1.pressure - n0.pressure).max() < 1e-8 * pmax
+    assert np.abs(t1.traction - t0.traction).max() < 1e-7 * MU * pmax
+    np.testing.assert_allclose(t1.shift_increment, t0.shift_increment, rtol=0, atol=1e-6 * abs(t0.shift_increment[0]))
+
+
+def test_outer_budget_and_friction_coefficient_are_enforced():
+    """max_outer passes without meeting coupling_tol raise ConvergenceError naming the loop, the budget and the
+    regime (beta, mu, f_t); mu <= 0 is refused before any solve."""
+    from bem.errors import ConvergenceError, InputError
+    mats = MaterialPair.from_moduli(210e3, 0.3, 70e3, 0.33)
+    grid, op, h = _setup(mats)
+    zero_t = np.zeros((2,) + grid.shape)
+    F = (0.5 * MU * FN, 0.0)
+    with pytest.raises(ConvergenceError, match="Panagiotopoulos") as info:
+        solve_coupled_step(op, h, FN, F, None, zero_t, mu=MU, max_outer=2, coupling_tol=1e-15)
+    assert info.value.iterations == 2 and "beta = -0.1" in str(info.value) and "f_t = 0.5" in str(info.value)
+    for mu in (0.0, -0.3):
+        with pytest.raises(InputError, match=r"mu = .*friction coefficient must be > 0"):
+            solve_coupled_step(op, h, FN, F, None, zero_t, mu=mu)
