@@ -41,6 +41,20 @@ def test_fft_products_equal_dense_matrix_products(small):
     assert rel(w, flat(-D["xz"] @ tx.ravel() - D["yz"] @ ty.ravel())) < 1e-12
 
 
+def test_multithreaded_products_equal_the_dense_matrix_products(small):
+    """threads = 2 (solver.threads): FFTW plans of their own, the same products as the dense matrices to 1e-12."""
+    grid, _ = small
+    op2 = HalfSpaceOperator(grid, COUPLED, threads=2)
+    rng = np.random.default_rng(2)
+    p, tx, ty = rng.standard_normal((3,) + grid.shape)
+    flat = lambda v: v.reshape(grid.shape)
+    assert rel(op2.normal(p), flat(op2.dense("zz") @ p.ravel())) < 1e-12
+    u = op2.tangential(tx, ty)
+    assert rel(u[0], flat(op2.dense("xx") @ tx.ravel() + op2.dense("xy") @ ty.ravel())) < 1e-12
+    assert rel(u[1], flat(op2.dense("xy") @ tx.ravel() + op2.dense("yy") @ ty.ravel())) < 1e-12
+    assert rel(op2.tangential_from_pressure(p)[0], flat(op2.dense("xz") @ p.ravel())) < 1e-12
+
+
 def test_tangential_block_is_the_fft_product_restricted_to_the_elements(small):
     """op.tangential_block (dense A^tt among a few elements, for the solver's turn line search) against the FFT
     product of a field supported on those elements, read at the same elements."""
