@@ -275,6 +275,19 @@ def test_limit_search_brackets_the_shakedown_limit_near_the_closed_forms(base, t
     assert {p: p.stat().st_mtime_ns for p in (tmp_path / "runs").glob("*.h5")} == mtimes
 
 
+def test_limit_search_in_w_when_the_load_is_varied(base, tmp_path):
+    """Varying load.ft searches w_lim(f_t) instead (seed Eq. 19 inverted): coarse grid, tol 0.1, the bracket within
+    the closed-form band kappa = 1.5 ... 1 widened by 0.1 (as above, in the other coordinate)."""
+    from solver import mdr_limits as L
+    report = search_limits(base, ["load.ft=0.46"], tmp_path, overrides=COARSE, tol=0.1, jobs=1, progress=None)
+    (row,) = report.rows
+    assert report.searched == "motion.w" and row["searched"] == "w" and row["f_t"] == pytest.approx(0.46)
+    assert row["status"] == "ok" and row["width"] <= 0.1 + 1e-12 and row["lower"] < row["upper"]
+    assert row["mdr_kappa=1"] == pytest.approx(L.w_lim(0.46, 1.0))
+    assert row["mdr_kappa=1.5"] == pytest.approx(L.w_lim(0.46, 1.5))
+    assert row["mdr_kappa=1.5"] - 0.1 <= row["midpoint"] <= row["mdr_kappa=1"] + 0.1
+
+
 def test_limit_search_in_worker_processes_matches_the_serial_search(base, tmp_path):
     """Two combinations searched in two local worker processes ('forkserver' with cases.limit_search preloaded)
     give the serial search's brackets and probe counts exactly: the searches are deterministic and a worker runs

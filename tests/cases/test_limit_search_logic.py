@@ -1,0 +1,68 @@
+"""The bracketing and bisection of the shakedown-limit search (cases.limit_search._LimitSearch) on a state whose
+limit is known exactly: the probe's run is replaced by a threshold rule, so that the 'ok', 'widened' and 'failed'
+outcomes and the period doubling of undecided probes are checked at their edges, which real runs reach only by
+chance (the real probes are tested in test_sweep.py). f_t, w dimensionless (seed Eq. 9)."""
+import pytest
+
+from bem.errors import RollcontactError
+from cases.limit_search import _LimitSearch
+from cases.scene import default_scene
+
+LIMIT = 0.437
+
+
+class ThresholdSearch(_LimitSearch):
+    """Shakedown below LIMIT, ratcheting above; 'undecided' within `band` of it unless the run has at least
+    `decide_at` periods. Records every probe (x, periods)."""
+
+    def __init__(self, tol, band=0.0, decide_at=None, always=None):
+        super().__init__(default_scene(), ["motion.periods=10"], {}, "load.ft", tol, None, None, False)
+        self.band, self.decide_at, self.always, self.calls = band, decide_at, always, []
+
+    def run(self, x, periods):
+        self.calls.append((x, periods))
+        self.probes += 1
+        if self.always:
+            return self.always
+        if abs(x - LIMIT) < self.band and (self.decide_at is None or periods < self.decide_at):
+            return "undecided"
+        return "shakedown" if x < LIMIT else "ratcheting"
+
+
+@pytest.mark.parametrize("guess", [(0.3, 0.6), (0.5, 0.55), (0.1, 0.2)])
+def test_bisection_brackets_the_limit_to_the_tolerance_from_any_guess(guess):
+    """Guesses around, above and below the limit: the bracket grows outwards until both sides are decided, then
+    halves to width <= tol with lower < LIMIT <= upper."""
+    s = ThresholdSearch(tol=0.01)
+    lo, hi = s.bracket(*guess)
+    lo, hi, status = s.bisect(lo, hi)
+    assert status == "ok" and lo < LIMIT <= hi and hi - lo <= 0.01 * (1 + 1e-9)
+    assert all(p == 10 for _, p in s.calls)
+
+
+def test_an_undecided_probe_is_rerun_with_two_and_four_times_the_periods():
+    """Undecided at 10 and 20 periods, decided at 40: the probe is classified, nothing is widened."""
+    s = ThresholdSearch(tol=0.01, band=0.02, decide_at=40)
+    lo, hi, status = s.bisect(*s.bracket(0.3, 0.6))
+    assert status == "ok" and lo < LIMIT <= hi and not s.undecided
+    near = [p for x, p in s.calls if abs(x - LIMIT) < 0.02]
+    assert near and near[:3] == [10, 20, 40]
+
+
+def test_a_probe_undecided_after_the_retries_widens_the_bracket_around_it():
+    """Undecided within 0.03 of the limit at any length: bisection stops at the first such midpoint and steps
+    outwards by tol/2, tol, 2 tol, ... until each side is decided: 'widened', with the undecided value recorded and
+    the bracket still containing the limit and the whole undecided band."""
+    s = ThresholdSearch(tol=0.01, band=0.03)
+    lo, hi, status = s.bisect(*s.bracket(0.3, 0.6))
+    assert status == "widened"
+    assert lo <= LIMIT - 0.03 and hi >= LIMIT + 0.03 and s.undecided
+    assert all(abs(x - LIMIT) < 0.03 for x in s.undecided)
+
+
+@pytest.mark.parametrize("state, message", [("ratcheting", "still no shakedown at the lower end"),
+                                            ("shakedown", "still no ratcheting at the upper end")])
+def test_a_limit_outside_the_search_range_fails_naming_the_end(state, message):
+    s = ThresholdSearch(tol=0.01, always=state)
+    with pytest.raises(RollcontactError, match=message):
+        s.bracket(0.3, 0.6)
