@@ -30,7 +30,8 @@ def _add_run(sub):
 def _run(args) -> int:
     from .outputs import check_output, default_output
     from .restart import continued_scene, load_restart
-    from .run import format_summary, print_progress, run_scene
+    from .run import RunInterrupted, format_summary, print_progress, run_scene
+    from .workers import sigterm_as_interrupt
     source = None
     if args.step is not None and not args.restart:
         raise InputError(f"--step {args.step}: applies only with --restart RUN.h5 (the stored step to continue "
@@ -52,20 +53,41 @@ def _run(args) -> int:
         if progress and (args.overrides or source):
             progress(f"no -o given: writing to {out} (named after the scene, the restart step and the --set "
                      "overrides, so the plain scene's file is not overwritten)")
-    if source is None:
-        outcome = run_scene(scene, out, progress=progress)
-    else:
-        if out.resolve() == source.path.resolve():
-            raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace "
-                             "its later steps; write to another file")
-        if progress:
-            progress(f"continuing {source.path} from step {source.step} (period {source.period})")
-        outcome = run_scene(scene, out, progress=progress, restart=source.state,
-                            restart_history=source.data.history, restart_snapshots=source.snapshots(),
-                            attrs=dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
-                                       restart_overrides=list(args.overrides) or [""]))
+    if source is not None and out.resolve() == source.path.resolve():
+        raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace "
+                         "its later steps; write to another file")
+    sigterm_as_interrupt(flag=False)
+    try:
+        if source is None:
+            outcome = run_scene(scene, out, progress=progress)
+        else:
+            if progress:
+                progress(f"continuing {source.path} from step {source.step} (period {source.period})")
+            outcome = run_scene(scene, out, progress=progress, restart=source.state,
+                                restart_history=source.data.history, restart_snapshots=source.snapshots(),
+                                attrs=dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
+                                           restart_overrides=list(args.overrides) or [""]))
+    except RunInterrupted as exc:
+        print(_interrupted_message(exc.outcome), file=sys.stderr)
+        return 130
+    except KeyboardInterrupt:
+        print("rollcontact run: interrupted before the first step; nothing written", file=sys.stderr)
+        return 130
+    if outcome.path != out:
+        print(f"the run did not complete: written to {outcome.path}, beside the complete run in {out}, "
+              "which is kept", file=sys.stderr)
     print(format_summary(outcome))
     return 0 if outcome.data.status == "complete" else 1
+
+
+def _interrupted_message(outcome) -> str:
+    d = outcome.data
+    n = len(d.history["step"])
+    text = f"rollcontact run: interrupted after {n} step(s); they are in {outcome.path} (status 'failed')"
+    if len(d.field_steps):
+        step = int(d.field_steps[-1])
+        text += f"; continue with: rollcontact run --restart {outcome.path} --step {step} -o OUT.h5"
+    return text
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -258,5 +258,9 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
     except KeyboardInterrupt:
         pool.stop()
         write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)
+        if progress is not None:
+            print(f"limit-search: interrupted; {len(rows)} of {len(plan)} search(es) finished are in "
+                  f"{outdir}/limits.csv; rerun the same command to resume (finished probe runs in {runs_dir} are "
+                  "reused)", file=progress, flush=True)
         raise
     return LimitReport(outdir, keys, searched, [rows[i] for i in sorted(rows)], time.perf_counter() - t0)

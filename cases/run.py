@@ -25,7 +25,7 @@ from solver.shakedown import classify
 from solver.stepping import LoadPath, StepParams, StepState, build_path, run_path
 from solver.tangential import TangentialParams
 
-from .hdf5 import RunData, version, write_run
+from .hdf5 import RunData, is_complete, version, write_run
 from .scene import Scene
 
 HISTORY_NAMES = ("step", "period", "W_x", "W_y", "approach", "Fn", "contact_area", "stick_area", "U_x",
@@ -140,7 +140,7 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
     if restart_snapshots:
         stored = [int(s) for s in restart_snapshots[0]]
         fields = {k: list(restart_snapshots[1][k]) for k in FIELD_NAMES}
-    status, error, state_label = "complete", "", None
+    status, error, state_label, interrupted = "complete", "", None, None
     dA = grid.cell_area
     if progress:
         progress(f"grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = {grid.dy} mm), "
@@ -179,13 +179,12 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
     except GrossSlidingError as exc:
         state_label, error = "gross_sliding", str(exc)
     except (RollcontactError, KeyboardInterrupt) as exc:
-        status = "failed"
-        error = "interrupted by the user" if isinstance(exc, KeyboardInterrupt) else f"{type(exc).__name__}: {exc}"
-        if isinstance(exc, KeyboardInterrupt):
-            _write(scene, out, grid, history, fields, stored, status, error, {}, attrs)
-            raise
-    # a run that stopped early (gross sliding, a solver failure) keeps the fields of its last completed step, the
-    # 'last step' that output.fields = "reversals" and "last" promise
+        status, interrupted = "failed", exc if isinstance(exc, KeyboardInterrupt) else None
+        error = "interrupted by the user" if interrupted else f"{type(exc).__name__}: {exc}"
+        if interrupted:  # the interrupt may have come between the appends of one step: keep whole steps only
+            last = _whole_steps(history, fields, stored, last)
+    # a run that stopped early (gross sliding, a solver failure, an interrupt) keeps the fields of its last completed
+    # step, the 'last step' that output.fields = "reversals" and "last" promise (and --restart needs)
     if (last is not None and scene.output.fields in ("reversals", "last")
             and (not stored or stored[-1] != last.step)):
         keep(last)
@@ -193,8 +192,43 @@ def run_scene(scene: Scene, out, *, progress=None, restart: StepState | None = N
     summary = summarise(scene, path, history, state_label, grid, wall)
     if state_label == "gross_sliding":   # the step that found no equilibrium; the solver's message
         summary.update(stopped_at_step=len(history["step"]), state_message=error)
+    if status != "complete":
+        out = _beside_a_complete_run(out)
     data = _write(scene, out, grid, history, fields, stored, status, error, summary, attrs)
-    return RunOutcome(Path(out), data, wall)
+    outcome = RunOutcome(Path(out), data, wall)
+    if interrupted:
+        raise RunInterrupted(outcome) from interrupted
+    return outcome
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C (or SIGTERM through the CLI) during `run_scene`: the finished steps were written; `outcome` says where."""
+
+    def __init__(self, outcome):
+        super().__init__(f"interrupted; {len(outcome.data.history['step'])} step(s) written to {outcome.path}")
+        self.outcome = outcome
+
+
+def _whole_steps(history, fields, stored, last):
+    """Trim the history and the stored fields to the steps recorded in full; returns the last such step's record
+    (or None when it is not `last`, whose appends were cut short)."""
+    n = min(len(v) for v in history.values())
+    for v in history.values():
+        del v[n:]
+    m = min([len(stored)] + [len(v) for v in fields.values()])
+    del stored[m:]
+    for v in fields.values():
+        del v[m:]
+    return last if last is not None and n and history["step"][-1] == last.step else None
+
+
+def _beside_a_complete_run(out):
+    """A run that did not complete is not written over a complete run file: it goes to <stem>.partial.h5 beside it
+    (an interrupted rerun would otherwise replace a finished result with a part of one)."""
+    out = Path(out)
+    if out.exists() and is_complete(out):
+        return out.with_name(out.stem + ".partial" + out.suffix)
+    return out
 
 
 def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:

@@ -12,10 +12,10 @@ what finished is kept and summarised).
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
 
 from .scene import Scene, default_scene
+from .workers import sigterm_as_interrupt
 
 
 def _common(p):
@@ -56,28 +56,13 @@ def _scene(args) -> Scene:
     return Scene.from_toml(args.scene) if args.scene else default_scene()
 
 
-def _sigterm_as_interrupt():
-    """Make SIGTERM behave like Ctrl-C (SIGINT) so the sweep stops its workers and writes its summary (the flag
-    makes the sweep raise it again if the exception was swallowed, see `cases.workers.interrupt_requested`)."""
-    from .workers import interrupt_requested
-
-    def handler(signum, frame):
-        interrupt_requested.set()
-        raise KeyboardInterrupt
-    try:
-        signal.signal(signal.SIGTERM, handler)
-        signal.signal(signal.SIGINT, handler)  # Ctrl-C: the same, so that a swallowed one is raised again too
-    except ValueError:                      # not the main thread (e.g. called from a test thread)
-        pass
-
-
 def sweep_handler(args) -> int:
     from .sweep import run_sweep
     if not args.vary:
         print("rollcontact sweep: error: give at least one --vary section.key=VALUES, "
               "e.g. --vary load.ft=0.1:0.9:9", file=sys.stderr)
         return 2
-    _sigterm_as_interrupt()
+    sigterm_as_interrupt()
     try:
         report = run_sweep(_scene(args), args.vary, args.output, overrides=args.overrides, jobs=args.jobs,
                            scheduler=args.scheduler, progress=None if args.quiet else sys.stderr)
@@ -94,7 +79,7 @@ def limit_handler(args) -> int:
         print("rollcontact limit-search: error: give --vary motion.w=... (or --vary load.ft=...)",
               file=sys.stderr)
         return 2
-    _sigterm_as_interrupt()
+    sigterm_as_interrupt()
     try:
         report = search_limits(_scene(args), args.vary, args.output, overrides=args.overrides, tol=args.tol,
                                jobs=args.jobs, scheduler=args.scheduler,

@@ -183,3 +183,20 @@ def _pid_alive(pid: int) -> bool:
     except PermissionError:                 # pragma: no cover
         return True
     return True
+
+
+def sigterm_as_interrupt(flag=True):
+    """Make SIGTERM behave like Ctrl-C (SIGINT) in the CLI, so that a run writes its finished steps and a sweep
+    stops its workers and writes its summary. With `flag` both signals also set `interrupt_requested`, which makes
+    a sweep raise the interrupt again if the exception was swallowed (it is never cleared: one command per
+    process)."""
+
+    def handler(signum, frame):
+        if flag:
+            interrupt_requested.set()
+        raise KeyboardInterrupt
+    try:
+        signal.signal(signal.SIGTERM, handler)
+        signal.signal(signal.SIGINT, handler)  # Ctrl-C: the same, so that a swallowed one is raised again too
+    except ValueError:                      # not the main thread (e.g. called from a test thread)
+        pass
