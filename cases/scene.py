@@ -37,6 +37,9 @@ from .scene_keys import SECTIONS, GridSpec, Geometry, Load, Materials, Motion, O
 from .scene_keys import INF, key_unit  # noqa: F401
 from .scene_limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
 
+#: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
+ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"))
+
 
 @dataclass
 class Scene(SceneLimits):
@@ -121,6 +124,7 @@ class Scene(SceneLimits):
         for key in self.derived:  # re-derived from the overridden scene unless set explicitly
             sec, name = key.split(".")
             data[sec].pop(name, None)
+        given = {}  # section.key -> the --set item that gave it
         for item in assignments:
             if "=" not in item or "." not in item.split("=", 1)[0]:
                 raise SceneError(f"--set {item!r}: expected section.key=value, e.g. load.ft=0.5")
@@ -130,12 +134,17 @@ class Scene(SceneLimits):
                 raise SceneError(f"--set {item!r}: unknown section {sec!r}; allowed: {list(SECTIONS)}")
             value = _parse_value(raw.strip())
             section = data.setdefault(sec, {})
-            for a, b in (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry")):
+            for a, b in ALTERNATIVE_KEYS:
+                other = b if name == a else a if name == b else None
+                if other is not None and f"{sec}.{other}" in given:
+                    raise SceneError(f"--set {given[f'{sec}.{other}']!r} and --set {item!r}: give either "
+                                     f"{sec}.{a} or {sec}.{b}, not both")
                 if name == a:
                     section.pop(b, None)
                 elif name == b:
                     section.pop(a, None)
             section[name] = value
+            given[f"{sec}.{name}"] = item
         return Scene.from_dict(data, name=self.name)
 
     def _check_consistency(self):

@@ -153,6 +153,19 @@ def build_scene(base: Scene, overrides, values: dict) -> Scene:
     return base.with_overrides(assignments)
 
 
+def _refuse_set_of_a_varied_key(overrides, keys):
+    """A --set of the other spelling of a varied key (load.Ft while load.ft is varied) contradicts every run: refused,
+    naming both. A --set of the varied key itself is a base value that the varied values replace (later wins)."""
+    from .scene import ALTERNATIVE_KEYS
+    for item in overrides:
+        sec, _, name = item.split("=", 1)[0].strip().partition(".")
+        others = {f"{sec}.{b if name == a else a}" for a, b in ALTERNATIVE_KEYS if name in (a, b)}
+        for key in keys:
+            if key in others:
+                raise SceneError(f"--set {item!r} and --vary {key}: two spellings of one quantity; the sweep sets "
+                                 f"{key} in every run, drop the --set")
+
+
 def plan_sweep(base: Scene, axes, outdir, overrides=()) -> list[PlannedRun]:
     """Every combination of the axes (first axis slowest) as a validated PlannedRun.
 
@@ -164,6 +177,7 @@ def plan_sweep(base: Scene, axes, outdir, overrides=()) -> list[PlannedRun]:
     if len(set(keys)) != len(keys):
         dup = sorted({k for k in keys if keys.count(k) > 1})
         raise SceneError(f"--vary: key(s) {dup} given more than once; give each key once with all its values")
+    _refuse_set_of_a_varied_key(overrides, keys)
     try:
         base_checked = base.with_overrides(list(overrides))
     except SceneError as exc:

@@ -106,6 +106,16 @@ def test_override_of_an_alternative_replaces_the_other_spelling():
     assert s.motion.w is None and s.amplitude == 1.2
 
 
+@pytest.mark.parametrize("first, second", [("load.Ft=5", "load.ft=0.3"), ("motion.w=0.2", "motion.W=1.0"),
+                                           ("geometry.Rx=20", "geometry.R=40")])
+def test_both_spellings_in_one_set_of_overrides_are_refused_naming_both(first, second):
+    """Within one command the two spellings of a quantity contradict each other (as in a scene file); the last one
+    used to win silently. Repeating the same key is an ordinary override (the last wins)."""
+    with pytest.raises(SceneError, match=rf"--set '{first}' and --set '{second}': give either"):
+        default_scene().with_overrides([first, second])
+    assert default_scene().with_overrides(["load.ft=0.3", "load.ft=0.4"]).f_t == 0.4
+
+
 def test_shipped_scenes_differ_only_in_the_rolling_direction():
     par = Scene.from_toml(shipped_scene_path("paper_parallel.toml"))
     perp = Scene.from_toml(shipped_scene_path("paper_perpendicular.toml"))
