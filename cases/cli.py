@@ -94,6 +94,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="rollcontact", description=(
         "Quasi-static rolling contact with Coulomb friction on an elastic half-space "
         "(boundary elements, FFT). Units: mm, N, MPa, degrees."))
+    from .hdf5 import version
+    parser.add_argument("--version", action="version", version=f"rollcontact {version()}")
     sub = parser.add_subparsers(dest="command", required=True)
     _add_run(sub)
     try:

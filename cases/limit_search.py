@@ -19,7 +19,7 @@ from .hdf5 import stored_summary
 from .sweep import execute_run, is_done
 from .sweep_plan import _RANGE_DIGITS, PlannedRun, _describe, build_scene, parse_vary, plan_sweep, run_file_name
 from .sweep_table import write_summary
-from .workers import _make_pool, _raise_if_interrupted, completed, default_jobs
+from .workers import _make_pool, _raise_if_interrupted, completed, default_jobs, require_dask
 
 
 LIMIT_KAPPAS = (1.0, 1.1, 1.5)
@@ -225,6 +225,8 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
         raise InputError(f"--tol = {tol!r}: allowed range is 0 < tol < 0.5 (in units of f_t or w)")
     searched = "motion.w" if has_ft else "load.ft"
     lo_x = _SEARCH_RANGE[searched][0]
+    if scheduler:
+        require_dask()
     plan = plan_sweep(base, axes, outdir, list(overrides) + [f"{searched}={lo_x}"])
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)

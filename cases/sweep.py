@@ -48,7 +48,7 @@ from .hdf5 import is_complete, stored_summary
 from .scene import Scene
 from .sweep_plan import PlannedRun, _describe, parse_vary, plan_sweep
 from .sweep_table import write_summary
-from .workers import _make_pool, _pid_alive, _raise_if_interrupted, completed, default_jobs
+from .workers import _make_pool, _pid_alive, _raise_if_interrupted, completed, default_jobs, require_dask
 
 
 # ---------------------------------------------------------------------------------------- one run
@@ -176,6 +176,8 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     if jobs is not None and int(jobs) < 1:
         raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
     jobs = default_jobs() if jobs is None else int(jobs)
+    if scheduler:
+        require_dask()
     plan = plan_sweep(base, axes, outdir, overrides)
     keys = [a.key for a in axes]
     outdir.mkdir(parents=True, exist_ok=True)

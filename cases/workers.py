@@ -90,11 +90,7 @@ class _DaskPool:
     """Runs submitted to a Dask distributed scheduler at `address` (optional dependency)."""
 
     def __init__(self, address):
-        try:
-            import distributed
-        except ImportError:
-            raise InputError("--scheduler needs the optional dependency dask.distributed: "
-                             "pip install 'rollcontact[dask]'") from None
+        distributed = require_dask()
         self._distributed = distributed
         try:
             self.client = distributed.Client(address, timeout=30)
@@ -135,6 +131,16 @@ class _SerialPool:
 
     def close(self):
         pass
+
+
+def require_dask():
+    """The dask.distributed module, or InputError saying how to install it (checked before a sweep writes anything)."""
+    try:
+        import distributed
+    except ImportError:
+        raise InputError("--scheduler needs the optional dependency dask.distributed: "
+                         "pip install 'rollcontact[dask]'") from None
+    return distributed
 
 
 def _make_pool(jobs, scheduler):

@@ -129,3 +129,10 @@ def test_u_stat_is_the_static_shift_at_f_t_also_when_further_force_levels_follow
     # (measured -0.99992 U_stat; 0.5 % leaves room for the reversal of the annulus on this 0.2 mm grid)
     assert d.history["U_x"][-1] == pytest.approx(-s["U_stat"], rel=0.005)
     assert f"U_stat = {s['U_stat']:.6f} mm" in capsys.readouterr().out
+
+
+def test_version_option_names_the_installed_version(capsys):
+    from cases.hdf5 import version
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0 and capsys.readouterr().out.strip() == f"rollcontact {version()}"

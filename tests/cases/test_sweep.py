@@ -301,6 +301,16 @@ def test_limit_search_in_worker_processes_matches_the_serial_search(base, tmp_pa
     assert len(read_summary(tmp_path / "parallel" / "limits.csv")) == 2
 
 
+def test_a_set_of_the_other_spelling_of_a_varied_key_is_refused(base, tmp_path):
+    """--vary load.ft with --set load.Ft contradicts every run: refused before anything runs, naming both; nothing
+    is written. A --set of the varied key itself is a base value the varied values replace."""
+    with pytest.raises(SceneError, match=r"--set 'load.Ft=5' and --vary load.ft: two spellings of one quantity"):
+        plan_sweep(base, [parse_vary("load.ft=0.2,0.4")], tmp_path / "out", ["load.Ft=5"])
+    assert not (tmp_path / "out").exists()
+    runs = plan_sweep(base, [parse_vary("load.ft=0.2,0.4")], tmp_path / "out", ["load.ft=0.3"])
+    assert [Scene.from_toml_text(r.scene_toml).f_t for r in runs] == [0.2, 0.4]
+
+
 def test_limit_search_refuses_varying_both_or_neither_coordinate(base, tmp_path):
     with pytest.raises(SceneError, match="not both"):
         search_limits(base, ["motion.w=0.2", "load.ft=0.5"], tmp_path, overrides=COARSE, progress=None)
@@ -317,3 +327,17 @@ def test_a_worker_still_compiles_numba_code_after_its_set_up():
     out = subprocess.run([sys.executable, "-c", code], cwd=Path(__file__).resolve().parents[2],
                          capture_output=True, text=True, timeout=300)
     assert out.returncode == 0 and out.stdout.strip() == "2", out.stderr[-2000:]
+
+
+def test_a_scheduler_without_dask_is_refused_before_anything_is_written(base, tmp_path, monkeypatch):
+    """Without the optional dask extra (its import made to fail here), --scheduler is refused with the install hint
+    before the output folder is created."""
+    from bem.errors import InputError
+    monkeypatch.setitem(sys.modules, "distributed", None)   # import distributed -> ImportError
+    with pytest.raises(InputError, match=r"pip install 'rollcontact\[dask\]'"):
+        run_sweep(base, ["load.ft=0.2,0.4"], tmp_path / "out", overrides=COARSE, scheduler="tcp://127.0.0.1:1",
+                  progress=None)
+    with pytest.raises(InputError, match="dask.distributed"):
+        search_limits(base, ["motion.w=0.2"], tmp_path / "out", overrides=COARSE, scheduler="tcp://127.0.0.1:1",
+                      progress=None)
+    assert not (tmp_path / "out").exists()
