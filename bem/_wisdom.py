@@ -60,7 +60,7 @@ def _remove_orphaned_temporaries(path):
             pid = int(tmp.name[len(path.stem) + 1:-len(".tmp")])
         except ValueError:
             continue
-        if pid != os.getpid() and not _process_exists(pid):
+        if pid != os.getpid() and not process_exists(pid):
             _unlink(tmp)
 
 
@@ -71,7 +71,8 @@ def _unlink(path):
         pass
 
 
-def _process_exists(pid):
+def process_exists(pid: int) -> bool:
+    """True while a process with this pid exists (also another user's)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:

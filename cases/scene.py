@@ -41,6 +41,13 @@ from .scene_limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RAD
 ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"))
 
 
+def other_spellings(key: str) -> set:
+    """The alternative spellings of section.key: 'load.ft' -> {'load.Ft'}, 'geometry.R' -> {'geometry.Rx',
+    'geometry.Ry'}; empty for a key without one."""
+    sec, _, name = key.partition(".")
+    return {f"{sec}.{b if name == a else a}" for a, b in ALTERNATIVE_KEYS if name in (a, b)}
+
+
 @dataclass
 class Scene(SceneLimits):
     """A complete, validated scene. Build it with `Scene.from_toml`, `Scene.from_dict` or `default_scene`."""
@@ -134,15 +141,11 @@ class Scene(SceneLimits):
                 raise SceneError(f"--set {item!r}: unknown section {sec!r}; allowed: {list(SECTIONS)}")
             value = _parse_value(raw.strip())
             section = data.setdefault(sec, {})
-            for a, b in ALTERNATIVE_KEYS:
-                other = b if name == a else a if name == b else None
-                if other is not None and f"{sec}.{other}" in given:
-                    raise SceneError(f"--set {given[f'{sec}.{other}']!r} and --set {item!r}: give either "
-                                     f"{sec}.{a} or {sec}.{b}, not both")
-                if name == a:
-                    section.pop(b, None)
-                elif name == b:
-                    section.pop(a, None)
+            for other in sorted(other_spellings(f"{sec}.{name}")):
+                if other in given:
+                    raise SceneError(f"--set {given[other]!r} and --set {item!r}: give either {other} or "
+                                     f"{sec}.{name}, not both")
+                section.pop(other.partition(".")[2], None)
             section[name] = value
             given[f"{sec}.{name}"] = item
         return Scene.from_dict(data, name=self.name)

@@ -42,13 +42,14 @@ import sys
 import time
 import tomllib
 
+from bem._wisdom import process_exists
 from bem.errors import InputError, RollcontactError
 
 from .hdf5 import is_complete, stored_summary
 from .scene import Scene
 from .sweep_plan import PlannedRun, _describe, parse_vary, plan_sweep
 from .sweep_table import write_summary
-from .workers import _make_pool, _pid_alive, _raise_if_interrupted, completed, default_jobs, require_dask
+from .workers import _make_pool, _raise_if_interrupted, completed, default_jobs, require_dask
 
 
 # ---------------------------------------------------------------------------------------- one run
@@ -245,6 +246,6 @@ def _remove_stale_temporaries(outdir: Path, plan):
         parts = tmp.name[1:].rsplit(".", 2)
         if len(parts) == 3 and parts[0] in names:
             pid = parts[1]
-            if pid.isdigit() and _pid_alive(int(pid)):
+            if pid.isdigit() and process_exists(int(pid)):
                 continue
             tmp.unlink(missing_ok=True)

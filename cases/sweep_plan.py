@@ -156,10 +156,9 @@ def build_scene(base: Scene, overrides, values: dict) -> Scene:
 def _refuse_set_of_a_varied_key(overrides, keys):
     """A --set of the other spelling of a varied key (load.Ft while load.ft is varied) contradicts every run: refused,
     naming both. A --set of the varied key itself is a base value that the varied values replace (later wins)."""
-    from .scene import ALTERNATIVE_KEYS
+    from .scene import other_spellings
     for item in overrides:
-        sec, _, name = item.split("=", 1)[0].strip().partition(".")
-        others = {f"{sec}.{b if name == a else a}" for a, b in ALTERNATIVE_KEYS if name in (a, b)}
+        others = other_spellings(item.split("=", 1)[0].strip())
         for key in keys:
             if key in others:
                 raise SceneError(f"--set {item!r} and --vary {key}: two spellings of one quantity; the sweep sets "

@@ -11,6 +11,7 @@ import signal
 import threading
 import time
 
+from bem._wisdom import process_exists
 from bem.errors import InputError
 
 def _worker_init(sweep_pid: int):
@@ -30,7 +31,7 @@ def _worker_init(sweep_pid: int):
     def watch():
         while True:
             time.sleep(0.5)
-            if os.getppid() != parent or not _pid_alive(sweep_pid):
+            if os.getppid() != parent or not process_exists(sweep_pid):
                 os._exit(1)
     threading.Thread(target=watch, daemon=True).start()
 
@@ -181,14 +182,6 @@ def default_jobs() -> int:
         return os.cpu_count() or 1
 
 
-def _pid_alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:                 # pragma: no cover
-        return True
-    return True
 
 
 def sigterm_as_interrupt(flag=True):
