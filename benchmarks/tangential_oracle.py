@@ -32,8 +32,9 @@ import numpy as np
 import scipy.linalg as sla
 
 from solver import _preconditioner as PC
-from solver.tangential import TangentialParams, solve_tangential
-from tangential_cattaneo import FN, MU, cattaneo_scene, median_time
+from solver.tangential import TangentialParams
+from tangential_cattaneo import cattaneo_scene, median_time
+from tangential_tolerance import chain
 
 
 class ExactPreconditioner(PC.Preconditioner):
@@ -91,23 +92,15 @@ def exact_preconditioner(op, contact):
         ExactPreconditioner.blocks = ExactPreconditioner.where = None
 
 
-def chain(op, g, g2, params):
-    zero = np.zeros((2,) + g.shape)
-    force = lambda f: (f * MU * FN, 0.0)
-    cold = solve_tangential(op, g, zero, force=force(0.5), params=params)
-    load = solve_tangential(op, g, cold.traction, force=force(0.52), params=params)
-    prof = solve_tangential(op, g2, cold.traction, force=force(0.5), params=params)
-    return {"cold": cold, "load": load, "profile": prof}
-
-
 def run(dx):
     grid, op, _, _, g, g2 = cattaneo_scene(dx)
     params = TangentialParams()
     tx, ty = np.random.default_rng(0).random((2,) + grid.shape)
     _, t_pair = median_time(lambda: op.tangential(tx, ty, out=np.empty((2,) + grid.shape)), 20)
-    own = chain(op, g, g2, params)
+    zero = np.zeros((2,) + grid.shape)
+    own = chain(op, g, g2, zero, params)
     with exact_preconditioner(op, (g > 0) | (g2 > 0)) as times:
-        exact = chain(op, g, g2, params)
+        exact = chain(op, g, g2, zero, params)
     row = {"dx_mm": dx, "grid": list(grid.shape), "pair_time_s": t_pair,
            "oracle_apply_time_s": statistics.median(times), "oracle_applications": len(times)}
     for name in own:
