@@ -21,12 +21,9 @@ of one `op.tangential` product measured in the same run). Memory grows as (2 n_c
 and 4 minutes; 217^2 would need 50 GB. Product counts do not depend on the machine. JSON to
 benchmarks/results/tangential_oracle.json.
 """
-import argparse
 import contextlib
-import json
 import statistics
 import time
-from pathlib import Path
 
 import numpy as np
 import scipy.linalg as sla
@@ -34,7 +31,7 @@ import scipy.linalg as sla
 from solver import _preconditioner as PC
 from solver.tangential import TangentialParams
 from tangential_cattaneo import cattaneo_scene, median_time
-from tangential_tolerance import chain
+from tangential_tolerance import chain, grids_main
 
 
 class ExactPreconditioner(PC.Preconditioner):
@@ -120,15 +117,5 @@ def run(dx):
     return row
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1])
-    args = ap.parse_args()
-    out = Path(__file__).parent / "results" / "tangential_oracle.json"
-    data = {"benchmark": "tangential_oracle", "grids": [run(dx) for dx in args.dx]}
-    out.write_text(json.dumps(data, indent=1))
-    print(f"wrote {out}")
-
-
 if __name__ == "__main__":
-    main()
+    grids_main(__doc__, "tangential_oracle", run, (0.2, 0.1))

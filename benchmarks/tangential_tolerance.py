@@ -56,15 +56,16 @@ def run(dx):
     return {"dx_mm": dx, "grid": list(grid.shape), "reference_tol": ref_tol, "rows": rows}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1, 0.05, 0.0211])
+def grids_main(doc, name, run, default_dx):
+    """Command line of the Cattaneo grid benchmarks: run(dx) for each --dx, JSON to benchmarks/results/<name>.json."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--dx", type=float, nargs="*", default=list(default_dx))
     args = ap.parse_args()
-    out = Path(__file__).parent / "results" / "tangential_tolerance.json"
-    data = {"benchmark": "tangential_tolerance", "grids": [run(dx) for dx in args.dx]}
+    out = Path(__file__).parent / "results" / f"{name}.json"
+    data = {"benchmark": name, "grids": [run(dx) for dx in args.dx]}
     out.write_text(json.dumps(data, indent=1))
     print(f"wrote {out}")
 
 
 if __name__ == "__main__":
-    main()
+    grids_main(__doc__, "tangential_tolerance", run, (0.2, 0.1, 0.05, 0.0211))
