@@ -20,9 +20,10 @@ with Pi the deflation of the force constraint (prescribed force only). Two forms
   elements with kappa = 0 have w_0 = 1); above the last level the weight passes to D = w_diag/(a_tt + kappa)
   over BLEND. The two-term form weights the smooth residuals of slip elements with kappa ~ a_tt by
   D ~ 1/(4 a_tt), far above the inverse symbol of A: on wide slip rings these modes were badly conditioned.
-  Measured on the Cattaneo scene (benchmarks/tangential_cattaneo.py, benchmarks/README.md): warm steps after a
-  load / profile change 17 / 21, 22 / 26, 28 / 37 products at 109^2 / 217^2 / 511^2 (two-term form: 22 / 27,
-  31 / 40, 59 / 83), cold 26 / 34 / 38 (27 / 37 / 54), for one more circulant (a quarter of a product) per
+  Measured on the Cattaneo scene when the level was introduced (2026-11-23, before the lagged projected steps of
+  `solver._tangcg`, which lowered every count; benchmarks/tangential_cattaneo.py, benchmarks/README.md): warm
+  steps after a load / profile change 17 / 21, 22 / 26, 28 / 37 products at 109^2 / 217^2 / 511^2 (two-term form:
+  22 / 27, 31 / 40, 59 / 83), cold 26 / 34 / 38 (27 / 37 / 54), for one more circulant (a quarter of a product) per
   iteration; on 109^2 that did not pay in time, so the level is used from 217^2 on (MIN_CONTACT_ELEMENTS, where
   the measured times are given). A third level (kappa = 64 a) helped only at f_t = 0.999 (-8 and -10 products
   at 217^2 and 511^2, elsewhere within +-7) for another quarter; on 55^2 (1801 contact elements) the shifted
