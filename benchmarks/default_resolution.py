@@ -8,6 +8,7 @@ cheapest setting within 1 % at the paper's point alone) and 0.4 mm (a/dx = 12), 
 with the paper-resolution value (itself within 3e-4 of the Richardson-extrapolated one). The recommended
 default is the coarser of the two whose worst deviation stays below 1 % with no change of state.
 """
+import argparse
 import json
 import tempfile
 import time
@@ -21,6 +22,7 @@ SETTINGS = [(0.8, 0.8, 1e-4), (0.4, 0.4, 1e-4)]
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no stray options
     sweep = json.loads((HERE / "results" / "sweep_paper.json").read_text())
     refs = [r for r in sweep["rows"] if r["state"] == "shakedown"]
     tmp = Path(tempfile.mkdtemp())

@@ -5,6 +5,7 @@ Exit codes: 0 success, 1 the run failed (its partial results are still written),
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from bem.errors import InputError, RollcontactError, SceneError
@@ -109,14 +110,51 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _ClosedPipeSafe:
+    """stdout that survives its reader going away (`rollcontact limits | head -4`): the first BrokenPipeError points
+    the descriptor at /dev/null, so the command finishes its work (a sweep its runs and summary) silently instead of
+    dying with a traceback."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def _to_devnull(self):
+        fd = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(fd, self._stream.fileno())
+        os.close(fd)
+
+    def write(self, text):
+        try:
+            return self._stream.write(text)
+        except BrokenPipeError:
+            self._to_devnull()
+            return len(text)
+
+    def flush(self):
+        try:
+            self._stream.flush()
+        except BrokenPipeError:
+            self._to_devnull()
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
 def main(argv=None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    real = sys.stdout is sys.__stdout__ and sys.stdout is not None
+    if real:
+        sys.stdout = _ClosedPipeSafe(sys.stdout)
     try:
         return args.func(args)
     except RollcontactError as exc:
         print(f"rollcontact {args.command}: error: {exc}", file=sys.stderr)
         return 2 if isinstance(exc, ValueError) else 1
+    finally:
+        if real:
+            sys.stdout.flush()
+            sys.stdout = sys.__stdout__
 
 
 if __name__ == "__main__":  # pragma: no cover

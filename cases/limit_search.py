@@ -19,6 +19,7 @@ from .hdf5 import stored_summary
 from .sweep import execute_run, is_done
 from .sweep_plan import _RANGE_DIGITS, PlannedRun, _describe, build_scene, parse_vary, plan_sweep, run_file_name
 from .sweep_table import write_summary
+from .outputs import output_folder
 from .workers import _make_pool, _raise_if_interrupted, completed, default_jobs, require_dask
 
 
@@ -226,10 +227,9 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
     searched = "motion.w" if has_ft else "load.ft"
     lo_x = _SEARCH_RANGE[searched][0]
     if scheduler:
-        require_dask()
+        require_dask(scheduler)
     plan = plan_sweep(base, axes, outdir, list(overrides) + [f"{searched}={lo_x}"])
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
+    outdir = output_folder(outdir)
     runs_dir = outdir / "runs"
     jobs = default_jobs() if jobs is None else int(jobs)
     if jobs < 1:

@@ -81,6 +81,10 @@ def handler(args, out=None) -> int:
         if args.w is not None and args.ft is not None:
             f, w = float(args.ft), float(args.w)
             setting = _setting(args)
+            if f >= 1.0:  # Ft >= mu Fn: no static equilibrium, not a ratchet (a run reports gross_sliding)
+                print(f"  at (f_t, w) = ({f:g}, {w:g}): gross sliding (Ft >= mu Fn: the contact slides as a whole, "
+                      "no shakedown and no ratchet rate)", file=out)
+                kappas = []
             for label, k in kappas:
                 if f <= lim.f_t_lim(w, k):
                     print(f"  at (f_t, w) = ({f:g}, {w:g}): shakedown, u_sd = {lim.u_shakedown(f, w, k):.6f}"

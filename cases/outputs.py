@@ -11,6 +11,17 @@ import tempfile
 from bem.errors import InputError
 
 
+def output_folder(path, option="-o") -> Path:
+    """The output folder `path` of sweep, limit-search, plot and compare, created if missing; InputError naming
+    the option when it (or a parent) is an existing file."""
+    folder = Path(path)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except (FileExistsError, NotADirectoryError):
+        raise InputError(f"{option} {path}: is a file (or lies under one), not a folder; give a folder name") from None
+    return folder
+
+
 def check_output(path) -> Path:
     """`path` as a Path if a run file can be written there; InputError naming -o otherwise.
 

@@ -24,6 +24,7 @@ import numpy as np  # noqa: E402
 from bem.errors import InputError  # noqa: E402
 
 from .hdf5 import read_run_file  # noqa: E402
+from .outputs import output_folder  # noqa: E402
 from .scene import Scene  # noqa: E402
 
 PARALLEL_COLOUR = "#1f5fa8"        # W parallel to Ft (seed "(1)")
@@ -299,8 +300,7 @@ def centre_line(view: RunView, values: np.ndarray, step: int, direction, order=1
 
 def save_figure(fig, out_dir, stem) -> list[Path]:
     """Write `stem`.png (DPI) and `stem`.pdf into out_dir; returns both paths."""
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    out_dir = output_folder(out_dir)
     paths = [out_dir / f"{stem}.png", out_dir / f"{stem}.pdf"]
     fig.savefig(paths[0], dpi=DPI)
     fig.set_layout_engine("none")       # keep the layout just computed: the PDF needs no second pass

@@ -46,6 +46,7 @@ from bem._wisdom import process_exists
 from bem.errors import InputError, RollcontactError
 
 from .hdf5 import is_complete, stored_summary
+from .outputs import output_folder
 from .scene import Scene
 from .sweep_plan import PlannedRun, _describe, parse_vary, plan_sweep
 from .sweep_table import write_summary
@@ -178,10 +179,10 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
     jobs = default_jobs() if jobs is None else int(jobs)
     if scheduler:
-        require_dask()
+        require_dask(scheduler)
     plan = plan_sweep(base, axes, outdir, overrides)
     keys = [a.key for a in axes]
-    outdir.mkdir(parents=True, exist_ok=True)
+    outdir = output_folder(outdir)
     _remove_stale_temporaries(outdir, plan)
     rows, todo = {}, []
     for run in plan:

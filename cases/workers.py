@@ -7,6 +7,7 @@ All three pools have the same small interface: submit(fn, *args) -> future, as_c
 """
 import multiprocessing
 import os
+import re
 import signal
 import threading
 import time
@@ -95,7 +96,7 @@ class _DaskPool:
         self._distributed = distributed
         try:
             self.client = distributed.Client(address, timeout=30)
-        except (OSError, TimeoutError) as exc:
+        except (OSError, TimeoutError, ValueError) as exc:
             raise InputError(f"--scheduler {address!r}: cannot connect to the Dask scheduler ({exc})") from None
 
     def submit(self, fn, *args):
@@ -134,8 +135,12 @@ class _SerialPool:
         pass
 
 
-def require_dask():
-    """The dask.distributed module, or InputError saying how to install it (checked before a sweep writes anything)."""
+def require_dask(address=None):
+    """The dask.distributed module, or InputError saying how to install it or that `address` is not a scheduler
+    address (checked before a sweep writes anything)."""
+    if address is not None and not re.fullmatch(r"([a-z]+://)?[^\s:/]+:\d+", str(address)):
+        raise InputError(f"--scheduler {address!r}: expected HOST:PORT or tcp://HOST:PORT, "
+                         "e.g. tcp://127.0.0.1:8786")
     try:
         import distributed
     except ImportError:

@@ -120,3 +120,38 @@ def test_a_margin_below_one_element_is_raised_to_one_element(tmp_path):
         x = h5["grid/x"][()]
     a = 4.7857  # Hertz a of the paper scene (mm); rolling is along y there, so x spans the contact alone
     assert x.max() - a >= 0.1 - 1e-9  # the outermost cell centre half an element or more beyond a
+
+
+@pytest.mark.parametrize("command", [["sweep", "--vary", "load.ft=0.2"], ["limit-search", "--vary", "motion.w=0.23"]])
+def test_an_output_folder_that_is_a_file_is_refused_before_any_run(tmp_path, capsys, command):
+    text = tmp_path / "notes.md"
+    text.write_text("# a file, not a folder\n")
+    assert main([*command, "-o", str(text)]) == 2
+    err = error_line(capsys)
+    assert "-o" in err and "not a folder" in err
+    assert text.read_text() == "# a file, not a folder\n"
+
+
+def test_a_malformed_scheduler_address_is_refused_before_the_folder_is_made(tmp_path, capsys):
+    out = tmp_path / "sweep"
+    assert main(["sweep", "--vary", "load.ft=0.2", "-o", str(out), "--scheduler", "foo"]) == 2
+    err = error_line(capsys)
+    assert "--scheduler 'foo'" in err and "HOST:PORT" in err
+    assert not out.exists()
+
+
+CLOSED_READER = ("import os, sys\n"
+                 "r, w = os.pipe(); os.close(r); os.dup2(w, 1)\n"  # stdout: a pipe whose reader has gone
+                 "from {module} import {entry}\n"
+                 "sys.exit({entry}(['limits', '--w', '0.23']))\n")
+
+
+@pytest.mark.parametrize("module, entry, clean", [("cases.cli", "main", True),
+                                                   ("cases.limits_cmd", "run_cli", False)])
+def test_a_reader_that_closes_the_pipe_early_gets_no_traceback(tmp_path, module, entry, clean):
+    # `rollcontact limits --w 0.23 | head -1`: the command finishes quietly (exit 0), as other Unix tools do; the
+    # bare subcommand entry without the CLI's guard shows that this situation does produce the error otherwise
+    proc = subprocess.run([sys.executable, "-c", CLOSED_READER.format(module=module, entry=entry)], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=120)
+    quiet = proc.returncode == 0 and "BrokenPipe" not in proc.stderr and "Traceback" not in proc.stderr
+    assert quiet == clean, proc.stderr

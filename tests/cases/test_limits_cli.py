@@ -49,3 +49,10 @@ def test_register_plugs_into_a_main_parser():
     limits_cmd.register(sub)
     args = parser.parse_args(["limits", "--w", "0.1"])
     assert args.func is limits_cmd.handler and args.w == 0.1
+
+
+def test_at_or_beyond_the_traction_bound_it_says_gross_sliding_not_a_ratchet_rate(capsys):
+    # f_t = 1 is Ft = mu Fn: no static equilibrium (a run reports gross_sliding), so no ratchet rate applies
+    assert limits_cmd.run_cli(["limits", "--ft", "1", "--w", "0.23"]) == 0
+    verdict = [line for line in capsys.readouterr().out.splitlines() if "at (f_t, w)" in line]
+    assert len(verdict) == 1 and "gross sliding" in verdict[0], verdict
