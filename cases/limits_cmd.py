@@ -84,8 +84,7 @@ def handler(args, out=None) -> int:
             if f >= 1.0:  # Ft >= mu Fn: no static equilibrium, not a ratchet (a run reports gross_sliding)
                 print(f"  at (f_t, w) = ({f:g}, {w:g}): gross sliding (Ft >= mu Fn: the contact slides as a whole, "
                       "no shakedown and no ratchet rate)", file=out)
-                kappas = []
-            for label, k in kappas:
+            for label, k in (kappas if f < 1.0 else ()):  # the state per kappa exists below the bound only
                 if f <= lim.f_t_lim(w, k):
                     print(f"  at (f_t, w) = ({f:g}, {w:g}): shakedown, u_sd = {lim.u_shakedown(f, w, k):.6f}"
                           f"   ({label})", file=out)

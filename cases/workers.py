@@ -138,8 +138,8 @@ class _SerialPool:
 def require_dask(address=None):
     """The dask.distributed module, or InputError saying how to install it or that `address` is not a scheduler
     address (checked before a sweep writes anything)."""
-    if address is not None and not re.fullmatch(r"([a-z]+://)?[^\s:/]+:\d+", str(address)):
-        raise InputError(f"--scheduler {address!r}: expected HOST:PORT or tcp://HOST:PORT, "
+    if address is not None and not re.fullmatch(r"([a-z]+://)?(\[[0-9A-Fa-f:.]+\]|[^\s:/\[\]]+):\d+", str(address)):
+        raise InputError(f"--scheduler {address!r}: expected HOST:PORT or tcp://HOST:PORT (an IPv6 host in brackets), "
                          "e.g. tcp://127.0.0.1:8786")
     try:
         import distributed

@@ -155,3 +155,13 @@ def test_a_reader_that_closes_the_pipe_early_gets_no_traceback(tmp_path, module,
                           capture_output=True, text=True, timeout=120)
     quiet = proc.returncode == 0 and "BrokenPipe" not in proc.stderr and "Traceback" not in proc.stderr
     assert quiet == clean, proc.stderr
+
+
+@pytest.mark.parametrize("address", ["tcp://127.0.0.1:8786", "127.0.0.1:8786", "tcp://[::1]:8786", "tls://host:9"])
+def test_well_formed_scheduler_addresses_pass_the_address_check(address):
+    from bem.errors import InputError
+    from cases.workers import require_dask
+    try:
+        require_dask(address)          # returns dask.distributed, or refuses only for want of the extra
+    except InputError as exc:
+        assert "HOST:PORT" not in str(exc), exc
