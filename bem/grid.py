@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from .errors import InputError
+from rollcontact.bem.errors import InputError
 
 #: Largest grid the operator will build by default: a memory guard. The operator (kernel spectra, FFT
 #: buffers and plans) takes about 740 bytes per element (measured at 512^2), about 3.1 GB at this size.

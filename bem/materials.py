@@ -16,7 +16,7 @@ Dundurs' beta = K/(1-nu) measures the normal-tangential coupling; beta = 0 decou
 from dataclasses import dataclass
 import math
 
-from .errors import InputError
+from rollcontact.bem.errors import InputError
 
 
 @dataclass(frozen=True)

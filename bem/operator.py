@@ -15,11 +15,11 @@ import numpy as np
 import pyfftw
 from scipy.fft import next_fast_len
 
-from . import _spectral, _wisdom
-from .errors import InputError
-from .grid import Grid
-from .influence import influence_coefficients
-from .materials import MaterialPair
+from rollcontact.bem import _spectral, wisdom as _wisdom
+from rollcontact.bem.errors import InputError
+from rollcontact.bem.grid import Grid
+from rollcontact.bem.influence import influence_coefficients
+from rollcontact.bem.materials import MaterialPair
 
 #: |beta| below which the normal-tangential coupling is dropped in 'auto' mode. At the seed's
 #: steel-on-rubber pair (beta = 7e-6) the coupling displacements are < 1e-5 of the direct ones,

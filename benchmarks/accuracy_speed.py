@@ -42,14 +42,14 @@ from pathlib import Path
 import numpy as np
 
 from accuracy_speed_chart import chart, pareto
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from bem.errors import RollcontactError
-from cases.run import run_scene
-from cases.scene import default_scene
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.bem.errors import RollcontactError
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import default_scene
 from peers import contactmechanics_solver, tamaas_solver
-from solver.analytic import CattaneoMindlin, HertzSphere
-from solver.normal import NormalParams, solve_normal
-from solver.tangential import TangentialParams, solve_tangential
+from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
+from rollcontact.solver.normal.normcg import NormalParams, solve_normal
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential
 
 R, FN, MU = 40.0, 21.19, 0.93
 SCENE_PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)

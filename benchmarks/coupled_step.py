@@ -4,7 +4,7 @@
 
 Steel sphere (E = 210e3 MPa, nu = 0.3, R = 10 mm) on aluminium (E = 70e3 MPa, nu = 0.33; Dundurs beta = -0.117),
 Fn = 500 N (a = 0.40 mm), mu = 0.3, one step from the unloaded state to Ft = f_t mu Fn along x (f_t = 0.3, 0.6,
-0.9) with `solver.coupled.solve_coupled_step` at its default tolerances, on grids of a/dx = 20 and 40 (contact
+0.9) with `solver.rolling.coupled.solve_coupled_step` at its default tolerances, on grids of a/dx = 20 and 40 (contact
 + 20 % margin, 49^2 and 97^2). For each case: outer iterations, the normal iterations (`op.normal` products) and
 the tangential products (`op.tangential` calls, re-synchronisations included) of every outer iteration, their
 totals, the wall time (median of --repeats, one FFTW thread, after a warm-up) and the rigid shift U_x.
@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-import solver.coupled as coupled
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from solver.analytic import HertzSphere
+from rollcontact.solver.rolling import coupled
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.solver.analytic import HertzSphere
 
 R, FN, MU = 10.0, 500.0, 0.3
 MATS = MaterialPair.from_moduli(210e3, 0.3, 70e3, 0.33)

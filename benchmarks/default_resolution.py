@@ -14,8 +14,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from cases.run import run_scene
-from cases.scene import default_scene
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import default_scene
 
 HERE = Path(__file__).parent
 SETTINGS = [(0.8, 0.8, 1e-4), (0.4, 0.4, 1e-4)]

@@ -32,11 +32,11 @@ from pathlib import Path
 
 import numpy as np
 
-from bem.operator import HalfSpaceOperator, fft_length
-from cases.run import run_scene, scene_grid, scene_path
-from cases.scene import default_scene
-from solver import mdr_limits as lim
-from solver.mdr import simulate_mdr
+from rollcontact.bem.operator import HalfSpaceOperator, fft_length
+from rollcontact.cases.run.bem_run import run_scene, scene_grid, scene_path
+from rollcontact.cases.scene.scene import default_scene
+from rollcontact.solver.mdr import limits as lim
+from rollcontact.solver.mdr.simulate import simulate_mdr
 
 RESULTS = Path(__file__).parent / "results"
 ROOT = Path(__file__).resolve().parents[1]

@@ -1,4 +1,4 @@
-"""Benchmark of the MDR fidelity level (solver.mdr, solver.mdr_bisection, solver.mdr_limits; theory.md §8).
+"""Benchmark of the MDR fidelity level (solver.mdr, solver.mdr.bisection, solver.mdr.limits; theory.md §8).
 
 Run:  .venv/bin/python benchmarks/mdr.py
 Writes benchmarks/results/mdr.json and prints the Markdown tables of benchmarks/README.md "## MDR model".
@@ -24,11 +24,11 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 
-from bem.materials import MaterialPair  # noqa: E402
-from solver import mdr_limits as L  # noqa: E402
-from solver.analytic import HertzSphere  # noqa: E402
-from solver.mdr import simulate_mdr  # noqa: E402
-from solver.mdr_bisection import shakedown_limit_ft  # noqa: E402
+from rollcontact.bem.materials import MaterialPair  # noqa: E402
+from rollcontact.solver.mdr import limits as L  # noqa: E402
+from rollcontact.solver.analytic import HertzSphere  # noqa: E402
+from rollcontact.solver.mdr.simulate import simulate_mdr  # noqa: E402
+from rollcontact.solver.mdr.bisection import shakedown_limit_ft  # noqa: E402
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 SCENE = dict(R=40.0, E_star=PAIR.E_star, G_star=PAIR.G_star, Fn=21.19, mu=0.93)

@@ -29,9 +29,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import numpy as np  # noqa: E402
 
-import solver.normal as sn  # noqa: E402
-from bem.grid import Grid  # noqa: E402
-from bem.operator import HalfSpaceOperator  # noqa: E402
+from rollcontact.solver.normal import normcg as sn  # noqa: E402
+from rollcontact.bem.grid import Grid  # noqa: E402
+from rollcontact.bem.operator import HalfSpaceOperator  # noqa: E402
 from normal_hertz import FILL, FN, HERTZ, MATERIALS, R  # noqa: E402
 
 KERNELS = ("_direction", "_step", "_residual_and_entries", "_add_columns")

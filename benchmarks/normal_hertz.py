@@ -33,11 +33,11 @@ sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
 
-from bem.grid import Grid  # noqa: E402
-from bem.materials import MaterialPair  # noqa: E402
-from bem.operator import HalfSpaceOperator  # noqa: E402
-from solver.analytic import HertzSphere  # noqa: E402
-from solver.normal import NormalParams, solve_normal  # noqa: E402
+from rollcontact.bem.grid import Grid  # noqa: E402
+from rollcontact.bem.materials import MaterialPair  # noqa: E402
+from rollcontact.bem.operator import HalfSpaceOperator  # noqa: E402
+from rollcontact.solver.analytic import HertzSphere  # noqa: E402
+from rollcontact.solver.normal.normcg import NormalParams, solve_normal  # noqa: E402
 
 MATERIALS = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 R, FN = 40.0, 21.19

@@ -14,7 +14,7 @@ This benchmark separates the two things a warm solve has to do, on the Hertz sph
   solution restricted to C': the floor for the warm start of the issue, again with C' known in advance.
 * NormCG warm starts (`solve_normal`, tol = 1e-8): the previous (unshifted) solution after the sphere
   moved by one cell and by 0.4 cell along x, and the moving warm start of the rolling stepper
-  (`solver.stepping.shifted_field`: the previous field translated by the move rounded to whole cells).
+  (`solver.rolling.stepping.shifted_field`: the previous field translated by the move rounded to whole cells).
 
 Usage: .venv/bin/python benchmarks/normal_warm_limits.py [--sizes 128 256 512]
 Writes benchmarks/results/normal_warm_limits.json and prints a Markdown table.
@@ -29,10 +29,10 @@ from scipy.ndimage import distance_transform_edt
 
 from normal_hertz import FILL, FN, HERTZ, MATERIALS, R, ROOT
 
-from bem.grid import Grid  # noqa: E402
-from bem.operator import HalfSpaceOperator  # noqa: E402
-from solver.normal import NormalParams, solve_normal  # noqa: E402
-from solver.stepping import shifted_field  # noqa: E402
+from rollcontact.bem.grid import Grid  # noqa: E402
+from rollcontact.bem.operator import HalfSpaceOperator  # noqa: E402
+from rollcontact.solver.normal.normcg import NormalParams, solve_normal  # noqa: E402
+from rollcontact.solver.rolling.stepping import shifted_field  # noqa: E402
 
 GAMMAS = (0.0, 0.1, -0.1)
 

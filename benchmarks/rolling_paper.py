@@ -29,9 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cases.run import run_scene, scene_grid, scene_path
-from cases.scene import default_scene
-from bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.bem_run import run_scene, scene_grid, scene_path
+from rollcontact.cases.scene.scene import default_scene
+from rollcontact.bem.operator import HalfSpaceOperator
 
 CASES = [("parallel", 0, 0.46), ("perpendicular", 90, 0.46), ("parallel", 0, 0.77), ("perpendicular", 90, 0.77)]
 

@@ -17,8 +17,8 @@ import time
 
 import numpy as np
 
-from cases.run import run_scene
-from cases.scene import default_scene
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import default_scene
 
 
 def measure(dx, ft, angle, periods):

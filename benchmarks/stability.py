@@ -39,15 +39,15 @@ from pathlib import Path
 
 import numpy as np
 
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from bem.errors import ConvergenceError, GrossSlidingError, RollcontactError
-from cases.run import run_scene
-from cases.scene import default_scene
-from solver import mdr_limits as lim
-from solver.analytic import CattaneoMindlin, HertzEllipse, HertzSphere
-from solver.coupled import solve_coupled_step
-from solver.normal import NormalParams, solve_normal
-from solver.tangential import TangentialParams, solve_tangential
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.bem.errors import ConvergenceError, GrossSlidingError, RollcontactError
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import default_scene
+from rollcontact.solver.mdr import limits as lim
+from rollcontact.solver.analytic import CattaneoMindlin, HertzEllipse, HertzSphere
+from rollcontact.solver.rolling.coupled import solve_coupled_step
+from rollcontact.solver.normal.normcg import NormalParams, solve_normal
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential
 
 R, FN, MU, TOL = 40.0, 21.19, 0.93, 1e-8
 SCENE_PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)

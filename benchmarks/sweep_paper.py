@@ -4,11 +4,11 @@
 
 Scene: the paper's Table 1 (cases/paper_perpendicular.toml: dx = dy = 0.2 mm, dW = 0.2 mm, 10 periods),
 f_t = 0.1 ... 0.9 by 0.1, w = W/a in {0.1, 0.23, 0.4}, rolling parallel (angle 0) and perpendicular (90) to
-Ft: 54 runs through `cases.sweep.run_sweep` on `--jobs` local processes. The run folder is emptied first
+Ft: 54 runs through `cases.sweep.runner.run_sweep` on `--jobs` local processes. The run folder is emptied first
 (unless --keep), so the wall time is that of the whole sweep, cold worker start included.
 
 Reports: total wall time (s), runs per minute, the states, and for each alignment kappa fitted by least
-squares to Eq. 13 over the shakedown runs (solver.mdr_limits.fit_kappa), beside the seed's 1 (parallel) and
+squares to Eq. 13 over the shakedown runs (solver.mdr.limits.fit_kappa), beside the seed's 1 (parallel) and
 1.1 (perpendicular). JSON to benchmarks/results/sweep_paper.json; the run files stay in --out (ignored by git).
 """
 from __future__ import annotations
@@ -22,9 +22,9 @@ import shutil
 import sys
 import time
 
-from cases.scene import Scene, shipped_scene_path
-from cases.sweep import run_sweep
-from solver import mdr_limits as lim
+from rollcontact.cases.scene.scene import Scene, shipped_scene_path
+from rollcontact.cases.sweep.runner import run_sweep
+from rollcontact.solver.mdr import limits as lim
 
 VARY = ["load.ft=0.1:0.9:9", "motion.w=0.1,0.23,0.4", "motion.angle=0,90"]
 ROOT = Path(__file__).resolve().parent.parent

@@ -19,10 +19,10 @@ from pathlib import Path
 
 import numpy as np
 
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from solver.analytic import CattaneoMindlin, HertzSphere
-from solver.normal import solve_normal
-from solver.tangential import solve_tangential
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
+from rollcontact.solver.normal.normcg import solve_normal
+from rollcontact.solver.tangential.shift import solve_tangential
 
 R, FN, MU = 40.0, 21.19, 0.93
 MATS = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)

@@ -34,7 +34,7 @@ from tangential_cattaneo import FN, MU, cattaneo_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 
-from solver.tangential import TangentialParams, solve_tangential  # noqa: E402
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential  # noqa: E402
 
 
 def deflate(x, stick):

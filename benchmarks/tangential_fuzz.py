@@ -36,8 +36,8 @@ from pathlib import Path
 import numpy as np
 
 from tangential_cattaneo import cattaneo_scene
-from solver import tangential as T
-from solver.tangential import TangentialParams, solve_tangential, traction_capacity
+from rollcontact.solver.tangential import shift as T
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential, traction_capacity
 
 CATEGORIES = ("cold", "warm", "region", "initial", "shift", "reversal", "near_bound")
 TOL = TangentialParams().tol

@@ -4,7 +4,7 @@
 
 The Cattaneo chains of `tangential_cattaneo.py` (cold f_t = 0.5 from zero; warm load f_t 0.5 -> 0.52; warm profile:
 the pressure moved by one cell in y), solved twice at the default tolerance: with the solver's own preconditioner
-(circulant inverses, `solver._preconditioner`) and with an oracle that replaces it by the exact inverse of the
+(circulant inverses, `solver.tangential._preconditioner`) and with an oracle that replaces it by the exact inverse of the
 linearised operator of the current division, K = B^T (A + kappa) B (B: both directions in stick, the slip tangent in
 slip; kappa the turning curvature of slip tractions), with the force constraint eliminated exactly:
 
@@ -28,8 +28,8 @@ import time
 import numpy as np
 import scipy.linalg as sla
 
-from solver import _preconditioner as PC
-from solver.tangential import TangentialParams
+from rollcontact.solver.tangential import _preconditioner as PC
+from rollcontact.solver.tangential.shift import TangentialParams
 from tangential_cattaneo import cattaneo_scene, median_time
 from tangential_tolerance import chain, grids_main
 

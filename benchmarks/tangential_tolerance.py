@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from solver.tangential import TangentialParams, solve_tangential
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential
 from tangential_cattaneo import FN, MU, cattaneo_scene
 
 TOLS = (1e-5, 1e-6, 1e-7, 1e-8)

@@ -1,3 +1,10 @@
-"""Contact solvers on a `bem` operator: normal, tangential (Kalker's shift problem), time stepping,
-and the 1-D MDR model. Imports only `bem`. Units: mm, N, MPa.
+"""Contact solvers on a `rollcontact.bem` operator. Imports only `rollcontact.bem`. Units: mm, N, MPa.
+
+    normal/      frictionless normal contact: NormCG (theory.md §4)
+    tangential/  Kalker's transient shift problem with a prescribed force: projected TangCG (theory.md §5)
+    rolling/     one step of rolling on the world-fixed grid: shifted gap profiles, the coupled normal +
+                 tangential step, the load path and its time stepping, shakedown classification (theory.md §6)
+    mdr/         the 1-D MDR model of oscillating rolling and its closed-form limits (theory.md §8)
+    analytic     closed-form references: Hertz, Cattaneo-Mindlin, Hertz ellipse (theory.md §7)
+    memo         the product memo the normal and tangential solvers share
 """

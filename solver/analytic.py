@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from bem.errors import InputError
+from rollcontact.bem.errors import InputError
 
 
 @dataclass(frozen=True)

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from bem.influence import influence_coefficients
+from rollcontact.bem.influence import influence_coefficients
 
 G, NU, DX, DY = 1.0, 0.3, 0.2, 0.3
 GS = G / 2  # one elastic body on a rigid one: Kalker's combined G is twice the body's modulus

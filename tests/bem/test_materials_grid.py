@@ -4,9 +4,9 @@ import math
 import numpy as np
 import pytest
 
-from bem.errors import InputError
-from bem.grid import Grid, contact_box
-from bem.materials import Material, MaterialPair
+from rollcontact.bem.errors import InputError
+from rollcontact.bem.grid import Grid, contact_box
+from rollcontact.bem.materials import Material, MaterialPair
 
 SCENE = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 

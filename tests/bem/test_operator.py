@@ -3,12 +3,12 @@ import numpy as np
 import pytest
 from scipy.fft import next_fast_len
 
-from bem.errors import InputError
-from bem.grid import Grid
-from bem.influence import influence_coefficients
-from bem.materials import MaterialPair
-from bem.operator import HalfSpaceOperator
-from solver.analytic import HertzSphere
+from rollcontact.bem.errors import InputError
+from rollcontact.bem.grid import Grid
+from rollcontact.bem.influence import influence_coefficients
+from rollcontact.bem.materials import MaterialPair
+from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.solver.analytic import HertzSphere
 
 COUPLED = MaterialPair.from_moduli(210e3, 0.3, 70e3, 0.33)   # steel on aluminium, beta ~ -0.1
 SCENE = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)       # beta ~ 7e-6

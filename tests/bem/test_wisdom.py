@@ -1,4 +1,4 @@
-"""The on-disk FFTW wisdom cache (bem._wisdom): an atomic write that leaves no temporary file behind, also when the
+"""The on-disk FFTW wisdom cache (bem.wisdom): an atomic write that leaves no temporary file behind, also when the
 write fails or is interrupted, and removal of the temporary files of processes that died while writing (a sweep
 worker killed by SIGTERM during the save left one 0.3 MB file per kill in ~/.cache/rollcontact)."""
 import os
@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from bem import _wisdom
+from rollcontact.bem import wisdom as _wisdom
 
 
 @pytest.fixture

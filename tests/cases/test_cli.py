@@ -6,10 +6,10 @@ import sys
 import numpy as np
 import pytest
 
-from cases.cli import main
-from cases.hdf5 import read_run
-from cases.scene import default_scene
-from solver.analytic import CattaneoMindlin, HertzSphere
+from rollcontact.cases.cli.main import main
+from rollcontact.cases.results.hdf5 import read_run
+from rollcontact.cases.scene.scene import default_scene
+from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 
 COARSE = ["--set", "grid.dx=0.4", "--set", "motion.dW=0.4", "--set", "motion.periods=2"]
 
@@ -68,11 +68,11 @@ def test_mdr_fidelity_writes_the_same_history_layout(tmp_path):
     out = tmp_path / "mdr.h5"
     assert main(["run", "-q", "-o", str(out), "--set", 'solver.fidelity="mdr"']) == 0
     d = read_run(out)
-    from cases.run import HISTORY_NAMES
+    from rollcontact.cases.run.bem_run import HISTORY_NAMES
     assert set(d.history) == set(HISTORY_NAMES)
     # the 1D MDR model reaches the pure-MDR closed form u_sd(f_t, w, kappa = 3/2) (seed Eq. 15, theory 8.4; with
     # 4001 springs and dW = 0.2 mm measured within 6e-8), larger than the 3D model's at f_t 0.46, w 0.23
-    from solver.mdr_limits import KAPPA_MDR, u_shakedown
+    from rollcontact.solver.mdr.limits import KAPPA_MDR, u_shakedown
     s = d.summary
     assert s["state"] == "shakedown"
     assert s["u_sd"] == pytest.approx(u_shakedown(s["f_t"], s["w"], KAPPA_MDR), abs=1e-6)
@@ -132,7 +132,7 @@ def test_u_stat_is_the_static_shift_at_f_t_also_when_further_force_levels_follow
 
 
 def test_version_option_names_the_installed_version(capsys):
-    from cases.hdf5 import version
+    from rollcontact.cases.results.hdf5 import version
     with pytest.raises(SystemExit) as info:
         main(["--version"])
     assert info.value.code == 0 and capsys.readouterr().out.strip() == f"rollcontact {version()}"

@@ -10,7 +10,7 @@ import sys
 import h5py
 import pytest
 
-from cases.cli import main
+from rollcontact.cases.cli.main import main
 
 COARSE = ["--set", "grid.dx=0.4", "--set", "motion.dW=0.4", "--set", "motion.periods=2"]
 ROLLCONTACT = str(Path(sys.executable).with_name("rollcontact"))
@@ -146,8 +146,8 @@ CLOSED_READER = ("import os, sys\n"
                  "sys.exit({entry}(['limits', '--w', '0.23']))\n")
 
 
-@pytest.mark.parametrize("module, entry, clean", [("cases.cli", "main", True),
-                                                   ("cases.limits_cmd", "run_cli", False)])
+@pytest.mark.parametrize("module, entry, clean", [("rollcontact.cases.cli.main", "main", True),
+                                                   ("rollcontact.cases.cli.limits_cmd", "run_cli", False)])
 def test_a_reader_that_closes_the_pipe_early_gets_no_traceback(tmp_path, module, entry, clean):
     # `rollcontact limits --w 0.23 | head -1`: the command finishes quietly (exit 0), as other Unix tools do; the
     # bare subcommand entry without the CLI's guard shows that this situation does produce the error otherwise
@@ -159,8 +159,8 @@ def test_a_reader_that_closes_the_pipe_early_gets_no_traceback(tmp_path, module,
 
 @pytest.mark.parametrize("address", ["tcp://127.0.0.1:8786", "127.0.0.1:8786", "tcp://[::1]:8786", "tls://host:9"])
 def test_well_formed_scheduler_addresses_pass_the_address_check(address):
-    from bem.errors import InputError
-    from cases.workers import require_dask
+    from rollcontact.bem.errors import InputError
+    from rollcontact.cases.sweep.workers import require_dask
     try:
         require_dask(address)          # returns dask.distributed, or refuses only for want of the extra
     except InputError as exc:

@@ -6,8 +6,8 @@ at the paper's point but 1.4 % off at f_t = 0.1, w = 0.1 (parallel), the case ch
 """
 import pytest
 
-from cases.run import run_scene
-from cases.scene import RESOLUTION_PER_RADIUS, Scene, default_scene
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import RESOLUTION_PER_RADIUS, Scene, default_scene
 
 SEED = {"materials": {"E1": float("inf"), "nu1": 0.3, "E2": 4.35, "nu2": 0.5}, "geometry": {"R": 40.0},
         "load": {"Fn": 21.19, "mu": 0.93, "ft": 0.46}, "motion": {"w": 0.23, "angle": 90.0}}

@@ -9,9 +9,9 @@ import math
 
 import pytest
 
-from bem.operator import HalfSpaceOperator
-from cases.run import run_scene, scene_grid, scene_path
-from cases.scene import default_scene
+from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.bem_run import run_scene, scene_grid, scene_path
+from rollcontact.cases.scene.scene import default_scene
 
 SEED_ELEMENTS = (3050, 4200)     # seed: 3050-4200 elements for W = 1.2-3.4 mm at dx = 0.2 mm (P14)
 
@@ -49,7 +49,7 @@ def test_uncoupled_operator_holds_no_coupling_spectra():
 
 
 def test_compressible_pair_switches_coupling_on():
-    from bem import MaterialPair
+    from rollcontact.bem import MaterialPair
     pair = MaterialPair.from_moduli(210e3, 0.3, 70e3, 0.3)
     scene = default_scene()
     op = HalfSpaceOperator(scene_grid(scene, scene_path(scene)), pair)

@@ -6,9 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from cases.run import run_scene
-from cases.scene import default_scene
-from solver.analytic import HertzEllipse
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import default_scene
+from rollcontact.solver.analytic import HertzEllipse
 
 
 @pytest.mark.parametrize("rx, ry", [(80.0, 20.0), (20.0, 80.0)])

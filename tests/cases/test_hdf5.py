@@ -5,7 +5,7 @@ import h5py
 import numpy as np
 import pytest
 
-from cases.hdf5 import RunData, is_complete, read_run, write_run
+from rollcontact.cases.results.hdf5 import RunData, is_complete, read_run, write_run
 
 
 def sample(status="complete"):

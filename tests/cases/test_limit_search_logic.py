@@ -1,12 +1,12 @@
-"""The bracketing and bisection of the shakedown-limit search (cases.limit_search._LimitSearch) on a state whose
+"""The bracketing and bisection of the shakedown-limit search (cases.sweep.limit_search._LimitSearch) on a state whose
 limit is known exactly: the probe's run is replaced by a threshold rule, so that the 'ok', 'widened' and 'failed'
 outcomes and the period doubling of undecided probes are checked at their edges, which real runs reach only by
 chance (the real probes are tested in test_sweep.py). f_t, w dimensionless (seed Eq. 9)."""
 import pytest
 
-from bem.errors import RollcontactError
-from cases.limit_search import _LimitSearch
-from cases.scene import default_scene
+from rollcontact.bem.errors import RollcontactError
+from rollcontact.cases.sweep.limit_search import _LimitSearch
+from rollcontact.cases.scene.scene import default_scene
 
 LIMIT = 0.437
 

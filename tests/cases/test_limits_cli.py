@@ -3,8 +3,8 @@ import argparse
 
 import pytest
 
-from cases import limits_cmd
-from solver import mdr_limits as L
+from rollcontact.cases.cli import limits_cmd
+from rollcontact.solver.mdr import limits as L
 
 
 def test_amplitude_gives_limit_load_u_lim_and_a_u_sd_table(capsys):

@@ -1,9 +1,9 @@
 """The default output file of `rollcontact run` (no -o): a variant never overwrites the plain scene's file."""
 from pathlib import Path
 
-from cases.cli import main
-from cases.hdf5 import read_run
-from cases.outputs import default_output
+from rollcontact.cases.cli.main import main
+from rollcontact.cases.results.hdf5 import read_run
+from rollcontact.cases.results.outputs import default_output
 
 COARSE = ["--set", "grid.dx=0.4", "--set", "motion.dW=0.4", "--set", "motion.periods=2"]
 

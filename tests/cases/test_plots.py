@@ -13,12 +13,12 @@ import matplotlib.image as mpimg
 import numpy as np
 import pytest
 
-from cases.cli import build_parser
-from cases.plot_cmd import run_cli
-from cases.plots import DPI, FIGSIZE, open_run, seed_regions
-from cases.plots_sweep import read_folder, read_limits
-from cases.run import run_scene
-from cases.scene import Scene, default_scene
+from rollcontact.cases.cli.main import build_parser
+from rollcontact.cases.cli.plot_cmd import run_cli
+from rollcontact.cases.plots.common import DPI, FIGSIZE, open_run, seed_regions
+from rollcontact.cases.plots.sweep_figures import read_folder, read_limits
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import Scene, default_scene
 
 COARSE = ["grid.dx=0.4", "motion.dW=0.4", "motion.periods=5", "solver.shakedown_tol=1e-3"]
 
@@ -197,7 +197,7 @@ def test_history_of_a_reversed_load_shows_its_negative_shift_and_no_mdr_lines(tm
     """load.levels = [0, -f_t] (Mindlin-Deresiewicz reversal, then rolling): u goes negative, so the axis must not
     start at 0 (it did: the whole oscillation was cut off), and the MDR u_sd of a monotonic ramp to f_t do not
     apply. A static run's axis counts steps, not periods."""
-    from cases.plots_run import history_figure
+    from rollcontact.cases.plots.run_figures import history_figure
     rolled = open_run(_run(tmp_path / "rev.h5", "load.ramp_steps=2", "load.levels=[0.0, -0.46]"))
     fig = history_figure([rolled])
     ax, ax2 = fig.axes[:2]

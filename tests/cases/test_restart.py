@@ -4,9 +4,9 @@ import h5py
 import numpy as np
 import pytest
 
-from cases.cli import main
-from cases.hdf5 import read_run
-from cases.restart import RESTART_SAFE_KEYS
+from rollcontact.cases.cli.main import main
+from rollcontact.cases.results.hdf5 import read_run
+from rollcontact.cases.run.restart import RESTART_SAFE_KEYS
 
 COARSE = ["--set", "grid.dx=0.4", "--set", "motion.dW=0.4", "--set", "motion.periods=2"]
 

@@ -7,10 +7,10 @@ regions of seed Sect. 3.2, the Coulomb bound, and the static limit w = 0 (Cattan
 import numpy as np
 import pytest
 
-from cases.run import run_scene
-from cases.scene import default_scene
-from solver.analytic import CattaneoMindlin, HertzSphere
-from solver.mdr_limits import KAPPA_PARALLEL, KAPPA_PERPENDICULAR, u_shakedown
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import default_scene
+from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
+from rollcontact.solver.mdr.limits import KAPPA_PARALLEL, KAPPA_PERPENDICULAR, u_shakedown
 
 SETTINGS = {"parallel": 0.0, "perpendicular": 90.0}
 

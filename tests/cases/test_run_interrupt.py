@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cases.hdf5 import is_complete, read_run
-from cases.restart import load_restart
+from rollcontact.cases.results.hdf5 import is_complete, read_run
+from rollcontact.cases.run.restart import load_restart
 
 ROLLCONTACT = str(Path(sys.executable).with_name("rollcontact"))
 LONG = ["--set", "motion.periods=600"]  # 14402 steps at dx = 0.2 mm (about 40 s): far longer than the wait below

@@ -3,8 +3,8 @@ import math
 
 import pytest
 
-from bem.errors import SceneError
-from cases.scene import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, Scene, default_scene, shipped_scene_path
+from rollcontact.bem.errors import SceneError
+from rollcontact.cases.scene.scene import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, Scene, default_scene, shipped_scene_path
 
 
 def test_default_scene_is_the_seed_table1_perpendicular_setting():
@@ -140,7 +140,7 @@ def test_readme_scene_table_states_the_defaults_of_cases_scene():
     import re
     from dataclasses import fields as dc_fields
     from pathlib import Path
-    from cases.scene import SECTIONS, _parse_value
+    from rollcontact.cases.scene.scene import SECTIONS, _parse_value
     readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
     rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `\[(\w+)\]` \|.*\| (.*) \|$", readme, re.M)}
     assert set(rows) == set(SECTIONS)

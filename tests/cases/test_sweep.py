@@ -1,4 +1,4 @@
-"""Sweeps and limit searches (cases.sweep, `rollcontact sweep`): real runs on coarse grids, real HDF5 files.
+"""Sweeps and limit searches (cases.sweep.runner, `rollcontact sweep`): real runs on coarse grids, real HDF5 files.
 
 Coarse scene: paper parallel scene, dx = dy = 0.6 mm (the shipped scenes set dy = 0.2 explicitly), one rolling step per quarter period (dW > W), 6 periods,
 shakedown tolerance 1e-3 in u. On it f_t = 0.3 shakes down and f_t = 0.9 ratchets for w = 0.15 and 0.3, in
@@ -17,14 +17,14 @@ import h5py
 import numpy as np
 import pytest
 
-from bem.errors import SceneError
-from cases.hdf5 import is_complete, read_run
-from cases.limit_search import search_limits
-from cases.scene import Scene, shipped_scene_path
-from cases.sweep import run_sweep
-from cases.sweep_plan import parse_vary, plan_sweep, run_file_name
-from cases.sweep_table import read_summary
-from solver import mdr_limits as L
+from rollcontact.bem.errors import SceneError
+from rollcontact.cases.results.hdf5 import is_complete, read_run
+from rollcontact.cases.sweep.limit_search import search_limits
+from rollcontact.cases.scene.scene import Scene, shipped_scene_path
+from rollcontact.cases.sweep.runner import run_sweep
+from rollcontact.cases.sweep.plan import parse_vary, plan_sweep, run_file_name
+from rollcontact.cases.sweep.table import read_summary
+from rollcontact.solver.mdr import limits as L
 
 COARSE = ["grid.dx=0.6", "grid.dy=0.6", "motion.dW=10", "motion.periods=6", "solver.shakedown_tol=1e-3"]
 VARY_2x2x2 = ["load.ft=0.3,0.9", "motion.w=0.15,0.3", "motion.angle=0,90"]
@@ -278,7 +278,7 @@ def test_limit_search_brackets_the_shakedown_limit_near_the_closed_forms(base, t
 def test_limit_search_in_w_when_the_load_is_varied(base, tmp_path):
     """Varying load.ft searches w_lim(f_t) instead (seed Eq. 19 inverted): coarse grid, tol 0.1, the bracket within
     the closed-form band kappa = 1.5 ... 1 widened by 0.1 (as above, in the other coordinate)."""
-    from solver import mdr_limits as L
+    from rollcontact.solver.mdr import limits as L
     report = search_limits(base, ["load.ft=0.46"], tmp_path, overrides=COARSE, tol=0.1, jobs=1, progress=None)
     (row,) = report.rows
     assert report.searched == "motion.w" and row["searched"] == "w" and row["f_t"] == pytest.approx(0.46)
@@ -289,7 +289,7 @@ def test_limit_search_in_w_when_the_load_is_varied(base, tmp_path):
 
 
 def test_limit_search_in_worker_processes_matches_the_serial_search(base, tmp_path):
-    """Two combinations searched in two local worker processes ('forkserver' with cases.limit_search preloaded)
+    """Two combinations searched in two local worker processes ('forkserver' with cases.sweep.limit_search preloaded)
     give the serial search's brackets and probe counts exactly: the searches are deterministic and a worker runs
     the same code. The parallel search's probes are its own (separate folders), not reused."""
     vary = ["motion.w=0.2,0.4"]
@@ -322,7 +322,7 @@ def test_a_worker_still_compiles_numba_code_after_its_set_up():
     # Regression: the worker set-up used to change NUMBA_NUM_THREADS after numba was imported, and every later
     # compilation in that worker then raised RuntimeError - which a sweep meets whenever numba's on-disk cache
     # misses (a fresh install, or edited sources): all runs failed. A fresh njit function forces a compilation.
-    code = ("import os, numba; from cases.workers import _worker_init; _worker_init(os.getpid()); "
+    code = ("import os, numba; from rollcontact.cases.sweep.workers import _worker_init; _worker_init(os.getpid()); "
             "print(numba.njit(lambda x: x + 1)(1))")
     out = subprocess.run([sys.executable, "-c", code], cwd=Path(__file__).resolve().parents[2],
                          capture_output=True, text=True, timeout=300)
@@ -332,7 +332,7 @@ def test_a_worker_still_compiles_numba_code_after_its_set_up():
 def test_a_scheduler_without_dask_is_refused_before_anything_is_written(base, tmp_path, monkeypatch):
     """Without the optional dask extra (its import made to fail here), --scheduler is refused with the install hint
     before the output folder is created."""
-    from bem.errors import InputError
+    from rollcontact.bem.errors import InputError
     monkeypatch.setitem(sys.modules, "distributed", None)   # import distributed -> ImportError
     with pytest.raises(InputError, match=r"pip install 'rollcontact\[dask\]'"):
         run_sweep(base, ["load.ft=0.2,0.4"], tmp_path / "out", overrides=COARSE, scheduler="tcp://127.0.0.1:1",

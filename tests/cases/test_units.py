@@ -5,10 +5,10 @@ Real files on a coarse grid: a BEM run, an MDR run, a sweep's summary.h5 and a l
 import h5py
 import pytest
 
-from cases.limit_search import search_limits
-from cases.run import run_scene
-from cases.scene import Scene, shipped_scene_path
-from cases.sweep import run_sweep
+from rollcontact.cases.sweep.limit_search import search_limits
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import Scene, shipped_scene_path
+from rollcontact.cases.sweep.runner import run_sweep
 
 COARSE = ["grid.dx=0.6", "grid.dy=0.6", "motion.dW=10", "motion.periods=3", "solver.shakedown_tol=1e-3"]
 

@@ -6,11 +6,11 @@ Fn = 100 N gives a ~ 0.24 mm; a 0.03 mm grid keeps the problem at ~20 x 20 eleme
 import numpy as np
 import pytest
 
-import solver.coupled as coupled
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from solver.analytic import HertzSphere
-from solver.coupled import solve_coupled_step
-from solver.normal import solve_normal
+from rollcontact.solver.rolling import coupled
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.solver.analytic import HertzSphere
+from rollcontact.solver.rolling.coupled import solve_coupled_step
+from rollcontact.solver.normal.normcg import solve_normal
 
 R, FN, MU = 10.0, 100.0, 0.3
 
@@ -146,7 +146,7 @@ def test_forced_coupling_of_identical_materials_reproduces_the_uncoupled_step():
 def test_outer_budget_and_friction_coefficient_are_enforced():
     """max_outer passes without meeting coupling_tol raise ConvergenceError naming the loop, the budget and the
     regime (beta, mu, f_t); mu <= 0 is refused before any solve."""
-    from bem.errors import ConvergenceError, InputError
+    from rollcontact.bem.errors import ConvergenceError, InputError
     mats = MaterialPair.from_moduli(210e3, 0.3, 70e3, 0.33)
     grid, op, h = _setup(mats)
     zero_t = np.zeros((2,) + grid.shape)

@@ -8,14 +8,14 @@ import math
 import numpy as np
 import pytest
 
-from bem.errors import InputError
-from bem.materials import MaterialPair
-from solver import mdr_limits as L
-from solver.analytic import HertzSphere
-from solver._mdr_kernels import _approach_kernel, _rigid_shift_kernel
-from solver.mdr import simulate_mdr
-from solver.mdr_bisection import shakedown_limit_ft
-from solver.mdr_step import approach_for_force, rigid_shift
+from rollcontact.bem.errors import InputError
+from rollcontact.bem.materials import MaterialPair
+from rollcontact.solver.mdr import limits as L
+from rollcontact.solver.analytic import HertzSphere
+from rollcontact.solver.mdr._kernels import _approach_kernel, _rigid_shift_kernel
+from rollcontact.solver.mdr.simulate import simulate_mdr
+from rollcontact.solver.mdr.bisection import shakedown_limit_ft
+from rollcontact.solver.mdr.step import approach_for_force, rigid_shift
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 SCENE = dict(R=40.0, E_star=PAIR.E_star, G_star=PAIR.G_star, Fn=21.19, mu=0.93)

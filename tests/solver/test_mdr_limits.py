@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from bem.errors import InputError
-from solver import mdr_limits as L
+from rollcontact.bem.errors import InputError
+from rollcontact.solver.mdr import limits as L
 
 W_VALUES = (0.05, 0.1, 0.23, 0.4, 0.7)
 KAPPAS = (L.KAPPA_PARALLEL, L.KAPPA_PERPENDICULAR, 1.3, L.KAPPA_MDR)

@@ -1,8 +1,8 @@
 """The product memo shared by the solvers (solver/_memo.py): exact matching, reuse limit, capacity."""
 import numpy as np
 
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from solver._memo import ProductMemo, same
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.solver.memo import ProductMemo, same
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 

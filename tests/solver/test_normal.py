@@ -10,12 +10,12 @@ import math
 import numpy as np
 import pytest
 
-from bem.errors import ConvergenceError, InputError
-from bem.grid import Grid
-from bem.materials import MaterialPair
-from bem.operator import HalfSpaceOperator
-from solver.analytic import HertzEllipse, HertzSphere
-from solver.normal import NormalParams, solve_normal
+from rollcontact.bem.errors import ConvergenceError, InputError
+from rollcontact.bem.grid import Grid
+from rollcontact.bem.materials import MaterialPair
+from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.solver.analytic import HertzEllipse, HertzSphere
+from rollcontact.solver.normal.normcg import NormalParams, solve_normal
 
 MATERIALS = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 R, FN = 40.0, 21.19

@@ -1,4 +1,4 @@
-"""The tangential solver's preconditioner (`solver._preconditioner`): weights, symmetry, definiteness, deflation.
+"""The tangential solver's preconditioner (`solver.tangential._preconditioner`): weights, symmetry, definiteness, deflation.
 
 CG needs a symmetric positive definite preconditioner; these are checked on a random stick/slip division with
 curvatures kappa from 1e-3 to 1e3 times the self coefficient (the range met between the stick edge and the
@@ -7,8 +7,8 @@ contact edge), for the two-term form and the shifted levels. Units mm, MPa (kapp
 import numpy as np
 import pytest
 
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from solver import _preconditioner as PC
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.solver.tangential import _preconditioner as PC
 
 MATERIALS = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 

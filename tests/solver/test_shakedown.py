@@ -1,9 +1,9 @@
-"""Classification of a run from its per-period displacements (solver.shakedown; theory §6.2)."""
+"""Classification of a run from its per-period displacements (solver.rolling.shakedown; theory §6.2)."""
 import numpy as np
 import pytest
 
-from bem.errors import InputError
-from solver.shakedown import STATES, Classification, classify, gross_sliding
+from rollcontact.bem.errors import InputError
+from rollcontact.solver.rolling.shakedown import STATES, Classification, classify, gross_sliding
 
 U0 = 0.8   # mm
 

@@ -13,14 +13,14 @@ import math
 import numpy as np
 import pytest
 
-from bem import Grid, HalfSpaceOperator, MaterialPair
-from bem.errors import ConvergenceError
-from cases.run import run_scene
-from cases.scene import default_scene
-from solver.analytic import CattaneoMindlin, HertzEllipse, HertzSphere
-from solver.coupled import solve_coupled_step
-from solver.normal import NormalParams, solve_normal
-from solver.tangential import TangentialParams, solve_tangential
+from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.bem.errors import ConvergenceError
+from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.scene.scene import default_scene
+from rollcontact.solver.analytic import CattaneoMindlin, HertzEllipse, HertzSphere
+from rollcontact.solver.rolling.coupled import solve_coupled_step
+from rollcontact.solver.normal.normcg import NormalParams, solve_normal
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential
 
 R, FN, MU, TOL, MAX_ITER = 40.0, 21.19, 0.93, 1e-8, 500
 SCENE_PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
@@ -152,7 +152,7 @@ def test_rolling_near_traction_bound_ratchets(f_t, angle, tmp_path):
 def test_rolling_well_below_and_above_shakedown_limit(factor, state, tmp_path):
     # factor of w_lim(f_t = 0.46; seed kappa 1.1) = 0.50. Not closer: rollcontact already ratchets at
     # 0.9 w_lim (benchmarks/stability.py, group w_limit), i.e. its limit lies below the seed's fit there.
-    from solver import mdr_limits as lim
+    from rollcontact.solver.mdr import limits as lim
     w = factor * lim.w_lim(0.46, lim.KAPPA_PERPENDICULAR)
     d = rolling([f"motion.w={w}", "grid.dx=0.4", "motion.dW=0.4", "motion.periods=6"], tmp_path)
     assert d.status == "complete"

@@ -2,12 +2,12 @@
 import numpy as np
 import pytest
 
-from bem import ContactEdgeError, Grid, HalfSpaceOperator, InputError, MaterialPair
-from solver.analytic import CattaneoMindlin, HertzSphere
-from solver.normal import solve_normal
-from solver.profiles import ArrayProfile, FunctionProfile, QuadricProfile
-from solver.stepping import StepParams, build_path, run_path
-from solver.tangential import solve_tangential
+from rollcontact.bem import ContactEdgeError, Grid, HalfSpaceOperator, InputError, MaterialPair
+from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
+from rollcontact.solver.normal.normcg import solve_normal
+from rollcontact.solver.rolling.profiles import ArrayProfile, FunctionProfile, QuadricProfile
+from rollcontact.solver.rolling.stepping import StepParams, build_path, run_path
+from rollcontact.solver.tangential.shift import solve_tangential
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 FN, MU, R = 21.19, 0.93, 40.0
@@ -120,7 +120,7 @@ def test_bad_loads_are_refused(op):
 
 
 def test_shifted_field_translates_by_whole_cells_with_zero_fill():
-    from solver.stepping import shifted_field
+    from rollcontact.solver.rolling.stepping import shifted_field
     f = np.arange(20.0).reshape(4, 5)
     assert shifted_field(f, 0, 0) is None
     down_right = shifted_field(f, 1, 2)

@@ -8,7 +8,7 @@ the seed's constants and checks from tangential_helpers.py. Units mm, N, MPa.
 import numpy as np
 import pytest
 
-from solver.tangential import solve_tangential, traction_capacity
+from rollcontact.solver.tangential.shift import solve_tangential, traction_capacity
 from tangential_helpers import FN, HERTZ, MINDLIN, MU, check_invariants
 
 

@@ -8,8 +8,8 @@ the seed's constants and checks from tangential_helpers.py. Units mm, N, MPa.
 import numpy as np
 import pytest
 
-from bem.errors import ConvergenceError, InputError
-from solver.tangential import TangentialParams, solve_tangential
+from rollcontact.bem.errors import ConvergenceError, InputError
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential
 from tangential_helpers import FN, MU
 
 

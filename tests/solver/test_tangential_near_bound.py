@@ -10,8 +10,8 @@ import math
 import numpy as np
 import pytest
 
-from bem.errors import GrossSlidingError
-from solver.tangential import TangentialParams, solve_tangential, traction_capacity
+from rollcontact.bem.errors import GrossSlidingError
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential, traction_capacity
 from tangential_helpers import FN, MINDLIN, MU, Scene, check_invariants
 
 

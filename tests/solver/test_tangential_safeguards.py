@@ -1,4 +1,4 @@
-"""Inside the tangential iteration (`solver._tangcg.ProjectedTangCG`), driven by hand: the gradient phase of
+"""Inside the tangential iteration (`solver.tangential._tangcg.ProjectedTangCG`), driven by hand: the gradient phase of
 safeguard 1, the lagged projected steps (one product, u exact, undone when they raise the energy) and the turns
 of slip elements whose slip points along their traction (`flip_direction` / `apply_flip`, line search on the
 step's energy).
@@ -11,8 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from solver.normal import solve_normal
-from solver.tangential import TangentialParams, solve_tangential, traction_capacity
+from rollcontact.solver.normal.normcg import solve_normal
+from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential, traction_capacity
 from tangential_helpers import FN, MU, R
 
 
@@ -20,8 +20,8 @@ def _iteration_at_start(scene, g, previous, f_cells, dU):
     """The iteration object of a step on the bound g (MPa) from the previous traction (MPa), with the prescribed
     force f_cells (MPa x elements) or, when None, the prescribed shift dU (mm): the start as `solve_tangential`
     makes it, u = A tau and u' = A tau' exact."""
-    from solver import _force_projection as FP
-    from solver._tangcg import ProjectedTangCG
+    from rollcontact.solver.tangential import _force_projection as FP
+    from rollcontact.solver.tangential._tangcg import ProjectedTangCG
     it = ProjectedTangCG(scene.op, g, np.asarray(dU, dtype=float), f_cells, None, TangentialParams(), str)
     ws = it.ws
     FP.start_traction(ws.tau, previous, g, f_cells, None, ws.region, ws.u, 1.0, 1.0)
@@ -150,7 +150,7 @@ def test_turn_direction_selects_only_large_reversed_slips():
     and exceeds big g; smaller reversed slips (left to the release rule) and stick elements get no direction. At
     t = 1 `apply_flip` puts the element on its rim opposite to the slip, u changes by the self coefficients
     times the traction change (exact = False), and at t < 1 the element lies inside its disc, in stick."""
-    from solver import _tangential_moves as K
+    from rollcontact.solver.tangential import _moves as K
     g = np.array([[1.0, 1.0, 2.0]])
     region = np.array([[2, 2, 1]], np.int8)
     tau0 = np.array([[[1.0, 0.0, 0.5]], [[0.0, 1.0, 0.0]]])
@@ -190,10 +190,10 @@ def test_turns_of_reversed_slips_never_raise_the_energy(scene, dense, monkeypatc
     search on the energy (theory §5.1: the step is a convex program, so a turn that is a descent step must lower
     it) the energy falls, and the force is kept to round-off. Both curvature paths: one product (67^2 > 55^2
     elements) and the dense block of the turned elements (DENSE_TURNS raised to take 67 turns)."""
-    from solver import _force_projection as FP
-    from solver import _tangcg as C
-    from solver import _tangential_division as K
-    from solver._tangcg import ProjectedTangCG
+    from rollcontact.solver.tangential import _force_projection as FP
+    from rollcontact.solver.tangential import _tangcg as C
+    from rollcontact.solver.tangential import _division as K
+    from rollcontact.solver.tangential._tangcg import ProjectedTangCG
     monkeypatch.setattr(C, "DENSE_TURNS", 10.0 if dense else 1.0)
     first = scene.cattaneo(0.5)
     X, Y = scene.X, scene.Y

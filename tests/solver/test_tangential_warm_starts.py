@@ -8,9 +8,9 @@ the seed's constants and checks from tangential_helpers.py. Units mm, N, MPa.
 import numpy as np
 import pytest
 
-from bem.errors import InputError
-from solver.normal import solve_normal
-from solver.tangential import solve_tangential
+from rollcontact.bem.errors import InputError
+from rollcontact.solver.normal.normcg import solve_normal
+from rollcontact.solver.tangential.shift import solve_tangential
 from tangential_helpers import FN, MINDLIN, MU, R, check_invariants
 
 
@@ -31,7 +31,7 @@ def test_displacement_is_exact_outside_the_contact_and_the_next_step_uses_it(sce
     whose contact may cover those elements. Before the fix the exterior kept the start's product (error 4e-2
     a_self max g) and the next step on the contact moved by one cell converged to a traction off by 4e-2 max g.
     Checked against the FFT product to round-off, and the next step against one with the memo cleared."""
-    from solver import tangential as T
+    from rollcontact.solver.tangential import shift as T
     first = scene.cattaneo(0.5)
     F = (0.49 * MU * FN, 0.0)
     unload = solve_tangential(scene.op, scene.bound, first.traction, force=F)
@@ -61,8 +61,8 @@ def test_previous_displacement_and_memo_give_the_same_step(scene):
 def test_start_placement_keeps_elements_on_the_bound_and_meets_the_force(scene):
     """The start is put on the force constraint by shifting only the elements inside their disc: elements on
     the bound stay on it (same traction), |tau| <= g everywhere and sum tau dA = F to round-off."""
-    from solver import _tangential_division as K
-    from solver._force_projection import place_on_force
+    from rollcontact.solver.tangential import _division as K
+    from rollcontact.solver.tangential._force_projection import place_on_force
     res = scene.cattaneo(0.5)
     g, dA = scene.bound, scene.grid.cell_area
     tau = res.traction.copy()
@@ -101,7 +101,7 @@ def test_force_projection_on_rims_keeps_slip_elements_on_their_bound(scene):
     """project_on_force with the region turns the slip tractions along their rims |tau| = g instead of pulling
     them inside (where they would count as stick): every slip element stays on its bound to round-off, the
     others stay in their discs, and the sum meets the force to the projection's tolerance (1e-10 sum g)."""
-    from solver import _force_projection as FP
+    from rollcontact.solver.tangential import _force_projection as FP
     res = scene.cattaneo(0.9)
     g, region = scene.bound, res.region
     assert (region == 2).sum() > 3 * (region == 1).sum()  # f_t = 0.9: a wide slip ring
@@ -137,12 +137,12 @@ def test_profile_step_with_previous_region_converges_to_the_plain_solution(scene
 
 def test_shifted_preconditioner_levels_speed_up_the_warm_step_not_its_answer(fine_scene, monkeypatch):
     """The shifted preconditioner level (the circulant inverse of A + 4 a I for slip elements with moderate
-    curvature, `solver._preconditioner`; by default only on contacts of 16000 elements and more, where it also
+    curvature, `solver.tangential._preconditioner`; by default only on contacts of 16000 elements and more, where it also
     saves time) switched on for the 109^2 grid (7221 contact elements). Same warm load step (f_t 0.5 -> 0.52)
     with it and with the two-term form alone: the same traction and shift to the solver tolerance (1e-8 of
     a_self max g: 1e-6 max g and 1e-6 relative leave room for the conditioning of A), Coulomb's law intact
     in both, and fewer products with the level (measured 17 against 22)."""
-    from solver import _preconditioner as PC
+    from rollcontact.solver.tangential import _preconditioner as PC
     scene = fine_scene
     assert np.count_nonzero(scene.bound) < PC.MIN_CONTACT_ELEMENTS  # the default: two-term form here
     first = scene.cattaneo(0.5)

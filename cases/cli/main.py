@@ -1,0 +1,161 @@
+"""Command line: `rollcontact run | limits | ...` (see the README walkthrough).
+
+Exit codes: 0 success, 1 the run failed (its partial results are still written), 2 bad input.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from rollcontact.bem.errors import InputError, RollcontactError, SceneError
+
+from rollcontact.cases.scene.scene import Scene, default_scene
+
+
+def _add_run(sub):
+    p = sub.add_parser("run", help="run one scene (default: the seed paper's perpendicular scene)",
+                       description="Run one scene and write its results to HDF5. Units: mm, N, MPa.")
+    p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded paper scene)")
+    p.add_argument("-o", "--output", help="output HDF5 file (default: results/<scene name>.h5; with --set or "
+                   "--restart, results/<scene name>[__from_step<N>]__<key=value>....h5)")
+    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
+                   help="override a scene key, e.g. --set load.ft=0.77 (repeatable)")
+    p.add_argument("--restart", metavar="RUN.h5",
+                   help="continue a stored run from its last stored step (or --step)")
+    p.add_argument("--step", type=int, help="with --restart: the stored step to continue from")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
+    p.set_defaults(func=_run)
+
+
+def _run(args) -> int:
+    from rollcontact.cases.results.outputs import check_output, default_output
+    from rollcontact.cases.run.restart import continued_scene, load_restart
+    from rollcontact.cases.run.bem_run import RunInterrupted, format_summary, print_progress, run_scene
+    from rollcontact.cases.sweep.workers import sigterm_as_interrupt
+    source = None
+    if args.step is not None and not args.restart:
+        raise InputError(f"--step {args.step}: applies only with --restart RUN.h5 (the stored step to continue "
+                         "from); to run a scene from the start, leave --step out")
+    if args.restart:
+        if args.scene:
+            raise SceneError("give either a scene file or --restart, not both")
+        source = load_restart(args.restart, args.step)
+        scene = continued_scene(source, args.overrides)
+    else:
+        scene = Scene.from_toml(args.scene) if args.scene else default_scene()
+        if args.overrides:
+            scene = scene.with_overrides(args.overrides)
+    progress = None if args.quiet else print_progress
+    if args.output:
+        out = check_output(args.output)
+    else:
+        out = check_output(default_output(scene.name, args.overrides, source.step if source else None))
+        if progress and (args.overrides or source):
+            progress(f"no -o given: writing to {out} (named after the scene, the restart step and the --set "
+                     "overrides, so the plain scene's file is not overwritten)")
+    if source is not None and out.resolve() == source.path.resolve():
+        raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace "
+                         "its later steps; write to another file")
+    sigterm_as_interrupt(flag=False)
+    try:
+        if source is None:
+            outcome = run_scene(scene, out, progress=progress)
+        else:
+            if progress:
+                progress(f"continuing {source.path} from step {source.step} (period {source.period})")
+            outcome = run_scene(scene, out, progress=progress, restart=source.state,
+                                restart_history=source.data.history, restart_snapshots=source.snapshots(),
+                                attrs=dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
+                                           restart_overrides=list(args.overrides) or [""]))
+    except RunInterrupted as exc:
+        print(_interrupted_message(exc.outcome), file=sys.stderr)
+        return 130
+    except KeyboardInterrupt:
+        print("rollcontact run: interrupted before the first step; nothing written", file=sys.stderr)
+        return 130
+    if outcome.path != out:
+        print(f"the run did not complete: written to {outcome.path}, beside the complete run in {out}, "
+              "which is kept", file=sys.stderr)
+    print(format_summary(outcome))
+    return 0 if outcome.data.status == "complete" else 1
+
+
+def _interrupted_message(outcome) -> str:
+    d = outcome.data
+    n = len(d.history["step"])
+    text = f"rollcontact run: interrupted after {n} step(s); they are in {outcome.path} (status 'failed')"
+    if len(d.field_steps):
+        step = int(d.field_steps[-1])
+        text += f"; continue with: rollcontact run --restart {outcome.path} --step {step} -o OUT.h5"
+    return text
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="rollcontact", description=(
+        "Quasi-static rolling contact with Coulomb friction on an elastic half-space "
+        "(boundary elements, FFT). Units: mm, N, MPa, degrees."))
+    from rollcontact.cases.results.hdf5 import version
+    parser.add_argument("--version", action="version", version=f"rollcontact {version()}")
+    sub = parser.add_subparsers(dest="command", required=True)
+    _add_run(sub)
+    try:
+        from rollcontact.cases.cli import limits_cmd
+    except ImportError:  # pragma: no cover - optional while the module is being written
+        limits_cmd = None
+    if limits_cmd is not None:
+        limits_cmd.register(sub)
+    from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)
+    from rollcontact.cases.cli import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
+    return parser
+
+
+class _ClosedPipeSafe:
+    """stdout that survives its reader going away (`rollcontact limits | head -4`): the first BrokenPipeError points
+    the descriptor at /dev/null, so the command finishes its work (a sweep its runs and summary) silently instead of
+    dying with a traceback."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def _to_devnull(self):
+        fd = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(fd, self._stream.fileno())
+        os.close(fd)
+
+    def write(self, text):
+        try:
+            return self._stream.write(text)
+        except BrokenPipeError:
+            self._to_devnull()
+            return len(text)
+
+    def flush(self):
+        try:
+            self._stream.flush()
+        except BrokenPipeError:
+            self._to_devnull()
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    real = sys.stdout is sys.__stdout__ and sys.stdout is not None
+    if real:
+        sys.stdout = _ClosedPipeSafe(sys.stdout)
+    try:
+        return args.func(args)
+    except RollcontactError as exc:
+        print(f"rollcontact {args.command}: error: {exc}", file=sys.stderr)
+        return 2 if isinstance(exc, ValueError) else 1
+    finally:
+        if real:
+            sys.stdout.flush()
+            sys.stdout = sys.__stdout__
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,103 @@
+"""`rollcontact plot` and `rollcontact compare`: figures of runs and sweeps (PNG and PDF).
+
+    rollcontact plot RUN.h5 [--step N] [-o DIR]        history (seed Fig. 4), maps (Figs. 5-6), centre lines
+                                                      (Figs. 5, 7) at a stored step (default: the last one)
+    rollcontact plot OUTDIR [-o DIR]                   sweep: u_sd(f_t) (Fig. 8), limits (Fig. 9), du (Fig. 11)
+    rollcontact compare A.h5 B.h5 [--step N] [-o DIR]  both runs on shared scales, B - A, overlaid histories
+
+Default output folder: `plots/` next to a run file, `OUTDIR/plots/` for a sweep folder OUTDIR. Every written file
+is printed. Runs without fields (output.fields = "none", MDR runs) get the history figure and a note.
+Exit codes: 0 written, 2 bad input (missing file, not a run file, step not stored).
+"""
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+import sys
+
+from rollcontact.cases.plots.common import PlotError, open_run
+
+
+def _default_dir(target: Path) -> Path:
+    return (target if target.is_dir() else target.parent) / "plots"
+
+
+def _report(paths, notes) -> int:
+    for n in notes:
+        print(f"note: {n}")
+    for p in paths:
+        print(Path(p).resolve())
+    return 0
+
+
+def plot_handler(args) -> int:
+    """`rollcontact plot TARGET`: one run file or a sweep folder."""
+    from rollcontact.cases.plots.run_figures import plot_run
+    from rollcontact.cases.plots.sweep_figures import plot_folder
+    notes = []
+    try:
+        target = Path(args.target)
+        out_dir = Path(args.output) if args.output else _default_dir(target)
+        if target.is_dir():
+            if args.step is not None:
+                raise PlotError("--step applies to a run file, not to a sweep folder")
+            paths = plot_folder(target, out_dir, notes)
+        else:
+            paths = plot_run(open_run(target), out_dir, args.step, notes)
+    except PlotError as exc:
+        print(f"rollcontact plot: error: {exc}", file=sys.stderr)
+        return 2
+    return _report(paths, notes)
+
+
+def compare_handler(args) -> int:
+    """`rollcontact compare A B`."""
+    from rollcontact.cases.plots.run_figures import compare_runs
+    notes = []
+    try:
+        va, vb = open_run(args.a), open_run(args.b)
+        out_dir = Path(args.output) if args.output else _default_dir(Path(args.a))
+        paths = compare_runs(va, vb, out_dir, args.step, notes)
+    except PlotError as exc:
+        print(f"rollcontact compare: error: {exc}", file=sys.stderr)
+        return 2
+    return _report(paths, notes)
+
+
+def register(subparsers):
+    """Add `plot` and `compare` to an argparse subparsers object (handlers set as `func`)."""
+    p = subparsers.add_parser(
+        "plot", help="figures of a run file or of a sweep folder (PNG + PDF)",
+        description="Figures of a run (u versus periods, maps, centre lines; seed Figs. 4-7) or of a sweep "
+                    "folder (u_sd versus f_t, limits, ratcheting increment; seed Figs. 8, 9, 11). "
+                    "Normalised as in the seed: u = U/U0, f_t = Ft/(mu Fn), w = W/a, tau/(mu p0).")
+    p.add_argument("target", help="run file (.h5) or sweep folder")
+    p.add_argument("--step", type=int, help="stored step for the maps (default: the last stored step)")
+    p.add_argument("-o", "--output", help="output folder (default: plots/ next to the input)")
+    p.set_defaults(func=plot_handler)
+    c = subparsers.add_parser(
+        "compare", help="two runs side by side on shared colour scales, with B - A",
+        description="Maps and centre lines of two runs on shared colour scales, the difference B - A, and "
+                    "both histories u = U/U0 versus periods on one axis.")
+    c.add_argument("a", help="run file A (.h5)")
+    c.add_argument("b", help="run file B (.h5)")
+    c.add_argument("--step", type=int, help="stored step of both runs (default: the last stored of each)")
+    c.add_argument("-o", "--output", help="output folder (default: plots/ next to A)")
+    c.set_defaults(func=compare_handler)
+    return p, c
+
+
+def run_cli(argv=None) -> int:
+    """Standalone entry for tests: returns the exit code."""
+    parser = argparse.ArgumentParser(prog="rollcontact")
+    sub = parser.add_subparsers(dest="command", required=True)
+    register(sub)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:
+        return int(exc.code or 0)
+    return args.func(args)
+
+
+if __name__ == "__main__":
+    sys.exit(run_cli(sys.argv[1:]))

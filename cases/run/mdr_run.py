@@ -1,0 +1,73 @@
+"""Run a scene on the 1-D MDR model ([solver] fidelity = "mdr"), with the same HDF5 history layout.
+
+The MDR model (solver.mdr) maps the rotationally symmetric, uncoupled contact onto a row of springs; it
+cannot tell rolling directions apart, so W_x, W_y and U_x, U_y are the 1-D values placed along the
+scene's rolling and force directions. The 1-D model has no 2-D fields: /fields holds no snapshots,
+/grid/x holds the spring positions (mm) and /grid/y is [0]. contact_area and stick_area are the areas
+of circles whose diameters are the loaded and the stuck spring lengths (pi L^2/4); iterations are 0
+(both 1-D solves are exact). Units mm, N, MPa.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+import time
+
+import numpy as np
+
+from rollcontact.bem.errors import InputError
+from rollcontact.solver.mdr.simulate import simulate_mdr
+
+from rollcontact.cases.results.hdf5 import RunData, version, write_run
+from rollcontact.cases.scene.scene import Scene
+
+
+def run_scene_mdr(scene: Scene, out, *, progress=None):
+    from rollcontact.cases.run.bem_run import HISTORY_NAMES, RunOutcome
+
+    rx, ry = scene.radii
+    if rx != ry:
+        raise InputError(f"[solver] fidelity = 'mdr' needs a sphere (R), got Rx = {rx}, Ry = {ry} mm: the MDR "
+                         "maps rotationally symmetric contacts only; use fidelity = 'bem'")
+    if abs(scene.material_pair.beta) > 1e-4:
+        raise InputError(f"[solver] fidelity = 'mdr' needs uncoupled materials (|beta| <= 1e-4), got beta = "
+                         f"{scene.material_pair.beta:.3g}; use fidelity = 'bem'")
+    if scene.load.levels:
+        raise InputError("[load] levels are not supported by fidelity = 'mdr'; use fidelity = 'bem'")
+    t0 = time.perf_counter()
+    pair = scene.material_pair
+    res = simulate_mdr(R=rx, E_star=pair.E_star, G_star=pair.G_star, Fn=scene.load.Fn, mu=scene.load.mu,
+                       Ft=scene.Ft, W=scene.amplitude, dW=scene.motion.dW,
+                       periods=scene.motion.periods if scene.amplitude > 0 else 0,
+                       ramp_steps=scene.load.ramp_steps, shakedown_tol=scene.solver.shakedown_tol)
+    wall = time.perf_counter() - t0
+    h = res.history
+    n = len(h["step"])
+    e_r, e_f = np.array(scene.rolling_direction), np.array(scene.load_direction)
+    zero = np.zeros(n)
+    history = dict(step=h["step"], period=h["period"], W_x=h["W"] * e_r[0], W_y=h["W"] * e_r[1],
+                   approach=h["approach"], Fn=np.full(n, scene.load.Fn),
+                   contact_area=math.pi * h["contact_length"] ** 2 / 4,
+                   stick_area=math.pi * h["stick_length"] ** 2 / 4, U_x=h["U"] * e_f[0], U_y=h["U"] * e_f[1],
+                   F_x=h["Ft"] * e_f[0], F_y=h["Ft"] * e_f[1], iterations=zero.astype(int),
+                   normal_iterations=zero.astype(int), tangential_iterations=zero.astype(int),
+                   outer_iterations=zero.astype(int), residual=zero, wall_time=np.full(n, wall / max(n, 1)))
+    assert set(history) == set(HISTORY_NAMES)
+    cls = res.classification
+    summary = dict(fidelity="mdr", a=res.a, d=res.d, p0=1.5 * scene.load.Fn / (math.pi * res.a ** 2), U0=res.U0,
+                   f_t=res.f_t, w=res.w, W=scene.amplitude, dW_used=res.dW_used, springs=res.n_springs,
+                   ds=res.ds, steps=n, steps_planned=n, iterations=0, wall_time=wall,
+                   U_stat=res.U_stat, u_stat=res.U_stat / res.U0)
+    if scene.amplitude > 0 and scene.motion.periods > 0:
+        summary.update(state=cls.state, periods_to_shakedown=cls.periods_to_shakedown,
+                       U_sd=None if cls.u_sd is None else cls.u_sd * res.U0, u_sd=cls.u_sd,
+                       dU_per_period=cls.dU_per_period, du=cls.du)
+    else:
+        summary["state"] = "gross_sliding" if cls.state == "gross_sliding" else "static"
+    s = (res.ds * (np.arange(res.n_springs) - (res.n_springs - 1) / 2))
+    data = RunData(scene_toml=scene.to_toml(), status="complete", x=s, y=np.zeros(1), history=history,
+                   fields={}, field_steps=np.zeros(0, dtype=np.int64), summary=summary, version=version())
+    write_run(out, data)
+    if progress:
+        progress(f"MDR model: {res.n_springs} springs, {n} steps in {wall * 1e3:.1f} ms")
+    return RunOutcome(Path(out), data, wall)

@@ -1,0 +1,148 @@
+"""The keys of a scene: its sections as dataclasses whose fields carry the default, the allowed range and the
+unit of each key, and the validation of one key against its field spec (used by `cases.scene.Scene.from_dict`).
+
+Units: mm, N, MPa, degrees (each field's `unit`; none for dimensionless keys). A value of the wrong type, out of
+its range or not among its choices raises `SceneError` naming the key, the value and the allowed range or values.
+The README's scene-key table lists the defaults.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+import math
+
+from rollcontact.bem.errors import SceneError
+
+INF = math.inf
+
+
+def _spec(default, lo=None, hi=None, *, lo_open=False, hi_open=False, choices=None, unit="", doc=""):
+    """Field with its allowed range kept in the metadata, so validation and docs share one table."""
+    meta = dict(lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open, choices=choices, unit=unit, doc=doc)
+    if isinstance(default, list):
+        return field(default_factory=lambda: list(default), metadata=meta)
+    return field(default=default, metadata=meta)
+
+
+@dataclass
+class Materials:
+    E1: float = _spec(206e3, 0, INF, lo_open=True, unit="MPa", doc="sphere Young's modulus (inf: rigid)")
+    nu1: float = _spec(0.3, -1, 0.5, lo_open=True, doc="sphere Poisson ratio")
+    E2: float = _spec(4.35, 0, INF, lo_open=True, hi_open=True, unit="MPa", doc="substrate Young's modulus")
+    nu2: float = _spec(0.5, -1, 0.5, lo_open=True, doc="substrate Poisson ratio")
+
+
+@dataclass
+class Geometry:
+    R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="sphere radius")
+    Rx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="radius in x")
+    Ry: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="radius in y")
+
+
+@dataclass
+class Load:
+    Fn: float = _spec(21.19, 0, INF, lo_open=True, hi_open=True, unit="N", doc="normal force")
+    # from 1e-6: the tangential problem scales with mu, but squared tractions underflow far below it (mu = 1e-200
+    # gave u_stat 1.6 % off, silently)
+    mu: float = _spec(0.93, 1e-6, 10, doc="friction coefficient")
+    ft: float | None = _spec(None, 0, 1, doc="tangential force / (mu Fn)")
+    Ft: float | None = _spec(None, 0, INF, hi_open=True, unit="N", doc="tangential force")
+    load_angle: float = _spec(0.0, -360, 360, unit="deg", doc="direction of Ft from the x axis")
+    ramp_steps: int = _spec(1, 1, 10000, doc="increments from 0 to Ft")
+    levels: list = _spec([], -1, 1, doc="further f_t levels after the ramp (unloading, reversal)")
+
+
+@dataclass
+class Motion:
+    # no upper bound, as for W (w = 2 rolls two radii each way; the MDR limits of the seed hold for w <= 1)
+    w: float | None = _spec(None, 0, INF, hi_open=True, doc="amplitude / contact radius a")
+    W: float | None = _spec(None, 0, INF, hi_open=True, unit="mm", doc="amplitude of the centre")
+    angle: float = _spec(90.0, -360, 360, unit="deg", doc="rolling direction relative to Ft")
+    periods: int = _spec(10, 0, 100000, doc="oscillation periods")
+    dW: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                             doc="largest rolling step (default: the element size dx)")
+
+
+@dataclass
+class GridSpec:
+    dx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                             doc="element size in x (default: the smaller Hertz semi-axis / 12, 2 digits)")
+    dy: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="element size in y (default dx)")
+    margin: float = _spec(0.6, 0, INF, hi_open=True, unit="mm",
+                          doc="extra width around the swept contact (at least one element is kept)")
+
+
+@dataclass
+class SolverSpec:
+    tol: float = _spec(1e-8, 0, 1e-2, lo_open=True, doc="relative tolerance of the contact solvers")
+    max_iter: int = _spec(500, 1, 1000000, doc="iteration budget per solve")
+    fidelity: str = _spec("bem", choices=("bem", "mdr"), doc="3D boundary elements or the 1D MDR model")
+    threads: int = _spec(1, 1, 256, doc="FFTW threads")
+    coupling: str = _spec("auto", choices=("auto", "on", "off"), doc="normal-tangential coupling")
+    shakedown_tol: float = _spec(1e-4, 0, 1, lo_open=True, doc="per-period increment |dU|/U0 taken as shakedown")
+
+
+@dataclass
+class Output:
+    fields: str = _spec("reversals", choices=("reversals", "all", "last", "none"),
+                        doc="steps whose fields are stored")
+
+
+SECTIONS = {"materials": Materials, "geometry": Geometry, "load": Load, "motion": Motion,
+            "grid": GridSpec, "solver": SolverSpec, "output": Output}
+_ATTR = {"materials": "materials", "geometry": "geometry", "load": "load", "motion": "motion",
+         "grid": "grid", "solver": "solver", "output": "output"}
+
+
+def _check(sec, f, value):
+    """Validate one key against its field spec; return the (possibly converted) value."""
+    meta, key = f.metadata, f"[{sec}] {f.name}"
+    unit = f" {meta['unit']}" if meta.get("unit") else ""
+    if meta.get("choices"):
+        if value not in meta["choices"]:
+            raise SceneError(f"{key} = {value!r}: allowed values are {list(meta['choices'])}")
+        return value
+    if f.name == "levels":
+        if not isinstance(value, list) or not all(_is_number(v) for v in value):
+            raise SceneError(f"{key} = {value!r}: expected a list of f_t values in [-1, 1]")
+        for v in value:
+            _range(key, float(v), meta, unit)
+        return [float(v) for v in value]
+    want_int = f.type in ("int",)
+    if want_int:
+        if isinstance(value, bool) or not isinstance(value, int):
+            if isinstance(value, float) and value.is_integer():
+                value = int(value)
+            else:
+                raise SceneError(f"{key} = {value!r}: expected an integer")
+    elif not _is_number(value):
+        raise SceneError(f"{key} = {value!r}: expected a number{unit and ' in' + unit}")
+    else:
+        value = float(value)
+    if isinstance(value, float) and math.isnan(value):
+        raise SceneError(f"{key} = nan: expected a number")
+    _range(key, value, meta, unit)
+    return value
+
+
+def _range(key, value, meta, unit):
+    lo, hi = meta.get("lo"), meta.get("hi")
+    bad_lo = lo is not None and (value <= lo if meta["lo_open"] else value < lo)
+    bad_hi = hi is not None and (value >= hi if meta["hi_open"] else value > hi)
+    if bad_lo or bad_hi:
+        left = "(" if meta["lo_open"] else "["
+        right = ")" if meta["hi_open"] else "]"
+        raise SceneError(f"{key} = {value!r}{unit}: allowed range is {left}{lo}, {hi}{right}{unit}")
+
+
+def _is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def key_unit(key: str) -> str:
+    """Unit of a scene key 'section.name' as written in HDF5 `units` attributes ('-': dimensionless or
+    not a quantity; also for a key that is not a scene key)."""
+    sec, _, name = key.partition(".")
+    for f in fields(SECTIONS[sec]) if sec in SECTIONS else ():
+        if f.name == name:
+            return f.metadata.get("unit") or "-"
+    return "-"

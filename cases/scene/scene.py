@@ -1,0 +1,279 @@
+"""Scenes: a TOML file <-> a `Scene` dataclass, validated key by key.
+
+Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
+
+    [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate)
+    [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry)
+    [load]      Fn; mu; ft (= Ft/(mu Fn)) or Ft; load_angle (direction of Ft from the x axis);
+                ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
+                ramp_steps increments: unloading and reversal)
+    [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW
+    [grid]      dx, dy, margin
+    [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
+    [output]    fields ("reversals", "all", "last", "none")
+
+A key left out takes its default (the field specs of `cases.scene.keys`): the seed paper's materials, Fn, mu
+and rolling angle, but no tangential load and no motion; only [geometry] is required. So a scene file states
+only what its scene needs (the README's scene-key table lists the defaults). Unknown keys, wrong types and
+out-of-range values raise `SceneError` naming the key, the value and the allowed range; so do, for a new
+run, a grid coarser than MIN_ELEMENTS_PER_RADIUS elements per Hertz semi-axis and a path of more than
+MAX_STEPS steps.
+
+The sections and the check of one key are in `cases.scene.keys`, the limits of a new run and the
+default resolution in `cases.scene.limits`; their public names are importable from here too.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields, replace
+import math
+from pathlib import Path
+import tomllib
+from importlib import resources
+
+from rollcontact.bem.errors import SceneError
+from rollcontact.bem.materials import MaterialPair
+from rollcontact.cases.scene.keys import (
+    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, _ATTR, _check)
+# re-exported: the names other modules import from cases.scene
+from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
+from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
+
+#: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
+ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"))
+
+
+def other_spellings(key: str) -> set:
+    """The alternative spellings of section.key: 'load.ft' -> {'load.Ft'}, 'geometry.R' -> {'geometry.Rx',
+    'geometry.Ry'}; empty for a key without one."""
+    sec, _, name = key.partition(".")
+    return {f"{sec}.{b if name == a else a}" for a, b in ALTERNATIVE_KEYS if name in (a, b)}
+
+
+@dataclass
+class Scene(SceneLimits):
+    """A complete, validated scene. Build it with `Scene.from_toml`, `Scene.from_dict` or `default_scene`."""
+
+    materials: Materials = field(default_factory=Materials)
+    geometry: Geometry = field(default_factory=Geometry)
+    load: Load = field(default_factory=Load)
+    motion: Motion = field(default_factory=Motion)
+    grid: GridSpec = field(default_factory=GridSpec)
+    solver: SolverSpec = field(default_factory=SolverSpec)
+    output: Output = field(default_factory=Output)
+    name: str = "scene"
+    #: keys filled in by `_resolve_resolution` ("grid.dx", "motion.dW"); `with_overrides` re-derives them
+    derived: frozenset = field(default=frozenset(), repr=False, compare=False)
+
+    # --- construction ----------------------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: dict, name: str = "scene", run_limits: bool = True) -> "Scene":
+        """run_limits=False skips the checks that only a new run needs (grid resolution, number of steps), for
+        reading the scene stored in a run file written before those checks existed."""
+        if not isinstance(data, dict):
+            raise SceneError("scene: expected a table of sections")
+        unknown = set(data) - set(SECTIONS)
+        if unknown:
+            raise SceneError(f"scene: unknown section(s) {sorted(unknown)}; allowed: {list(SECTIONS)}")
+        parts = {}
+        for sec, klass in SECTIONS.items():
+            values = data.get(sec, {})
+            if not isinstance(values, dict):
+                raise SceneError(f"[{sec}] must be a table of keys, got {values!r}")
+            names = {f.name: f for f in fields(klass)}
+            unknown = set(values) - set(names)
+            if unknown:
+                raise SceneError(f"[{sec}] unknown key(s) {sorted(unknown)}; allowed: {sorted(names)}")
+            kwargs = {k: _check(sec, names[k], v) for k, v in values.items()}
+            parts[sec] = klass(**kwargs)
+        scene = cls(**parts, name=name)
+        scene._check_consistency()
+        scene._resolve_resolution()
+        if run_limits:
+            scene._check_resolution()
+            scene._check_steps()
+        return scene
+
+    @classmethod
+    def from_toml(cls, path) -> "Scene":
+        path = Path(path)
+        try:
+            text = path.read_text()
+        except OSError as exc:
+            raise SceneError(f"scene file {path}: {exc.strerror}") from None
+        return cls.from_toml_text(text, name=path.stem)
+
+    @classmethod
+    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True) -> "Scene":
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise SceneError(f"scene {name}: not valid TOML ({exc})") from None
+        return cls.from_dict(data, name=name, run_limits=run_limits)
+
+    def to_dict(self, include_none: bool = False) -> dict:
+        out = {}
+        for sec in SECTIONS:
+            obj = getattr(self, _ATTR[sec])
+            vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
+            out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
+        return out
+
+    def to_toml(self) -> str:
+        """The full scene as TOML text (every key, None-valued alternatives left out)."""
+        lines = [f"# rollcontact scene '{self.name}' (units: mm, N, MPa, degrees)"]
+        for sec, vals in self.to_dict().items():
+            lines.append(f"\n[{sec}]")
+            lines += [f"{k} = {_toml_value(v)}" for k, v in vals.items()]
+        return "\n".join(lines) + "\n"
+
+    def with_overrides(self, assignments) -> "Scene":
+        """A new scene with `section.key=value` strings applied (values parsed as TOML, else as strings)."""
+        data = self.to_dict()
+        for key in self.derived:  # re-derived from the overridden scene unless set explicitly
+            sec, name = key.split(".")
+            data[sec].pop(name, None)
+        given = {}  # section.key -> the --set item that gave it
+        for item in assignments:
+            if "=" not in item or "." not in item.split("=", 1)[0]:
+                raise SceneError(f"--set {item!r}: expected section.key=value, e.g. load.ft=0.5")
+            key, raw = item.split("=", 1)
+            sec, name = key.strip().split(".", 1)
+            if sec not in SECTIONS:
+                raise SceneError(f"--set {item!r}: unknown section {sec!r}; allowed: {list(SECTIONS)}")
+            value = _parse_value(raw.strip())
+            section = data.setdefault(sec, {})
+            for other in sorted(other_spellings(f"{sec}.{name}")):
+                if other in given:
+                    raise SceneError(f"--set {given[other]!r} and --set {item!r}: give either {other} or "
+                                     f"{sec}.{name}, not both")
+                section.pop(other.partition(".")[2], None)
+            section[name] = value
+            given[f"{sec}.{name}"] = item
+        return Scene.from_dict(data, name=self.name)
+
+    def _check_consistency(self):
+        g, ld, mo = self.geometry, self.load, self.motion
+        if g.R is not None and (g.Rx is not None or g.Ry is not None):
+            raise SceneError("[geometry] give either R, or Rx and Ry, not both")
+        if g.R is None and (g.Rx is None) != (g.Ry is None):
+            raise SceneError("[geometry] Rx and Ry must be given together")
+        if g.R is None and g.Rx is None:
+            raise SceneError("[geometry] R (or Rx and Ry) is required, in mm")
+        if ld.ft is not None and ld.Ft is not None:
+            raise SceneError("[load] give either ft (= Ft/(mu Fn)) or Ft (N), not both")
+        if ld.Ft is not None and ld.Ft > ld.mu * ld.Fn * (1 + 1e-12):
+            raise SceneError(f"[load] Ft = {ld.Ft} N exceeds mu*Fn = {ld.mu * ld.Fn:.6g} N: gross sliding, "
+                             "no static state exists (allowed range 0 <= Ft <= mu*Fn)")
+        if mo.w is not None and mo.W is not None:
+            raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
+
+    # --- derived quantities ----------------------------------------------------------------------
+    @property
+    def material_pair(self) -> MaterialPair:
+        m = self.materials
+        return MaterialPair.from_moduli(m.E1, m.nu1, m.E2, m.nu2)
+
+    @property
+    def radii(self) -> tuple[float, float]:
+        g = self.geometry
+        return (g.R, g.R) if g.R is not None else (g.Rx, g.Ry)
+
+    @property
+    def equivalent_radius(self) -> float:
+        """sqrt(Rx Ry) (mm): the radius of the sphere with the same Gaussian curvature."""
+        rx, ry = self.radii
+        return math.sqrt(rx) * math.sqrt(ry)  # not sqrt(rx ry): that overflows from rx ry > 1e308
+
+    @property
+    def contact_radius(self) -> float:
+        """Hertz contact radius a of the equivalent sphere (mm), the unit of w."""
+        return (3.0 * self.load.Fn * self.equivalent_radius / (4.0 * self.material_pair.E_star)) ** (1 / 3)
+
+    @property
+    def semi_axes(self) -> tuple[float, float]:
+        """Hertz semi-axes (mm) along x and y: exact for a sphere, c (Rx/Ry)^(+-1/3) for an ellipse."""
+        rx, ry = self.radii
+        c = self.contact_radius
+        return (c, c) if rx == ry else (c * (rx / ry) ** (1 / 3), c * (ry / rx) ** (1 / 3))
+
+    @property
+    def f_t(self) -> float:
+        ld = self.load
+        if ld.Ft is not None:
+            return ld.Ft / (ld.mu * ld.Fn)
+        return 0.0 if ld.ft is None else ld.ft
+
+    @property
+    def Ft(self) -> float:
+        """Tangential force magnitude (N)."""
+        return self.f_t * self.load.mu * self.load.Fn
+
+    @property
+    def amplitude(self) -> float:
+        """Rolling amplitude W (mm)."""
+        mo = self.motion
+        if mo.W is not None:
+            return mo.W
+        return 0.0 if mo.w is None else mo.w * self.contact_radius
+
+    @property
+    def rolling_step(self) -> float:
+        """Step actually used, W/ceil(W/dW) (mm), so that the reversal points are hit exactly."""
+        W = self.amplitude
+        return W / math.ceil(W / self.motion.dW - 1e-9) if W > 0 else 0.0
+
+    @property
+    def load_direction(self) -> tuple[float, float]:
+        t = math.radians(self.load.load_angle)
+        return (math.cos(t), math.sin(t))
+
+    @property
+    def rolling_direction(self) -> tuple[float, float]:
+        t = math.radians(self.load.load_angle + self.motion.angle)
+        return (math.cos(t), math.sin(t))
+
+    @property
+    def spacing(self) -> tuple[float, float]:
+        return self.grid.dx, (self.grid.dy if self.grid.dy is not None else self.grid.dx)
+
+    def replace(self, **sections) -> "Scene":
+        return replace(self, **sections)
+
+
+def _parse_value(raw: str):
+    """A --set value: TOML, else a number as Python writes it (.5, 1., 1e3: not TOML), else the text."""
+    try:
+        return tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        pass
+    try:
+        return float(raw)  # a NaN is refused with the key by the field check, like TOML's nan
+    except ValueError:
+        return raw
+
+
+def _toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, float):
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        return repr(v)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    return str(v)
+
+
+DEFAULT_SCENE_FILE = "paper_perpendicular.toml"
+
+
+def shipped_scene_path(name: str) -> Path:
+    """Path of a scene file shipped in the `rollcontact.cases` package (cases/*.toml)."""
+    return Path(str(resources.files("rollcontact.cases").joinpath(name)))
+
+
+def default_scene() -> Scene:
+    """The embedded default: the seed paper's Table 1 (perpendicular setting, f_t = 0.46, w = 0.23)."""
+    return Scene.from_toml(shipped_scene_path(DEFAULT_SCENE_FILE))

@@ -1,0 +1,269 @@
+"""Shakedown-limit search of the 3D model (`rollcontact limit-search`; seed Eqs. 18-19, theory.md §8.4).
+
+For each combination of the varied keys: bisection in f_t (or in w when load.ft is varied) on the state of the
+run, shakedown below, ratcheting above, to a stated tolerance, from a bracket around the closed-form MDR limits.
+Probes are ordinary sweep run files (cases.sweep.runner), so a rerun resumes; results in OUTDIR/limits.{csv,h5}
+(cases.sweep.table). Units: f_t = Ft/(mu Fn), w = W/a (seed Eq. 9).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+import sys
+import time
+
+from rollcontact.bem.errors import InputError, RollcontactError, SceneError
+
+from rollcontact.cases.scene.scene import Scene
+from rollcontact.cases.results.hdf5 import stored_summary
+from rollcontact.cases.sweep.runner import execute_run, is_done
+from rollcontact.cases.sweep.plan import (
+    _RANGE_DIGITS, PlannedRun, _describe, build_scene, parse_vary, plan_sweep, run_file_name)
+from rollcontact.cases.sweep.table import write_summary
+from rollcontact.cases.results.outputs import output_folder
+from rollcontact.cases.sweep.workers import _make_pool, _raise_if_interrupted, completed, default_jobs, require_dask
+
+
+LIMIT_KAPPAS = (1.0, 1.1, 1.5)
+"""Closed-form MDR limits reported beside each 3D bracket: seed fits parallel (1) and perpendicular (1.1),
+pure MDR (1.5); seed Eqs. 18-19 and theory.md §8.4."""
+
+LIMIT_COLUMNS = ("index", "searched", "lower", "upper", "midpoint", "width", "status", "probes",
+                 "undecided", "mdr_kappa=1", "mdr_kappa=1.1", "mdr_kappa=1.5", "f_t", "w", "error")
+"""Columns of limits.csv / limits.h5 after the varied keys.
+
+searched: 'f_t' (limit f_t,lim(w), when w is varied) or 'w' (limit w_lim(f_t), when f_t is varied);
+lower: largest searched value found to shake down; upper: smallest found to ratchet (or slide);
+midpoint, width = upper - lower; status: 'ok' (width <= tol), 'widened' (a probe stayed undecided after
+two doublings of the periods: the bracket is the neighbourhood around it), 'failed' (error says why);
+probes: runs made (or reused); undecided: searched values that stayed undecided (';'-separated);
+mdr_kappa=K: closed-form limit for kappa = K (seed Eqs. 18-19, or its inverse w_lim); f_t, w: the other,
+fixed, normalised coordinate of the search (f_t = Ft/(mu Fn), w = W/a)."""
+
+_FT_KEYS = ("load.ft", "load.Ft")
+_W_KEYS = ("motion.w", "motion.W")
+_SEARCH_RANGE = {"load.ft": (0.01, 0.99), "motion.w": (0.02, 0.98)}
+_BRACKET_MARGIN = 0.05          # the first bracket is the closed forms' [kappa = 1.5, kappa = 1] range +- this
+_UNDECIDED_RETRIES = 2          # an undecided probe is rerun with 2x, then 4x the periods
+
+
+def _side(state: str) -> int:
+    """-1 below the limit (shakedown/static), +1 above (ratcheting/gross sliding), 0 undecided."""
+    return {"shakedown": -1, "static": -1, "ratcheting": 1, "gross_sliding": 1}.get(state, 0)
+
+
+class _LimitSearch:
+    """Bisection of one combination: probes are ordinary run files in `runs_dir` (so a rerun resumes)."""
+
+    def __init__(self, base, overrides, values, searched, tol, runs_dir, outdir, log):
+        self.base, self.overrides, self.values = base, list(overrides), dict(values)
+        self.searched, self.tol, self.runs_dir, self.outdir, self.log = searched, tol, runs_dir, outdir, log
+        self.periods = build_scene(base, overrides, values).motion.periods
+        self.probes, self.undecided = 0, []
+
+    def run(self, x, periods) -> str:
+        values = dict(self.values)
+        values[self.searched] = float(f"{x:.{_RANGE_DIGITS}g}")
+        extra = [] if periods == self.periods else [f"motion.periods={periods}"]
+        name_values = dict(values, **({"motion.periods": periods} if extra else {}))
+        scene = build_scene(self.base, self.overrides + extra, values)
+        toml = scene.to_toml()
+        run = PlannedRun(self.probes, name_values, toml, self.runs_dir / run_file_name(name_values, toml),
+                         scene.name)
+        self.probes += 1
+        if is_done(run):
+            summary = stored_summary(run.path)["summary"]
+        else:
+            result = execute_run(toml, scene.name, str(run.path))
+            if result["status"] != "complete":
+                raise RollcontactError(f"probe {_describe(name_values)} failed: {result['error']}")
+            summary = result["summary"]
+        state = summary.get("state") or ""
+        if self.log:
+            print(f"limit-search {_describe(self.values)}: {self.searched}={x:.6g} periods={periods} -> {state}",
+                  file=sys.stderr, flush=True)
+        return state
+
+    def classify(self, x) -> int:
+        periods = self.periods
+        for _ in range(_UNDECIDED_RETRIES + 1):
+            side = _side(self.run(x, periods))
+            if side != 0:
+                return side
+            periods *= 2
+        self.undecided.append(x)
+        return 0
+
+    def bracket(self, guess_lo, guess_hi):
+        """Find lo (below the limit) and hi (above it), starting from the closed-form guesses."""
+        xmin, xmax = _SEARCH_RANGE[self.searched]
+        lo, hi = max(xmin, guess_lo), min(xmax, guess_hi)
+        step = _BRACKET_MARGIN
+        while True:
+            s = self.classify(lo)
+            if s == -1:
+                break
+            if s == 1:
+                hi = min(hi, lo)
+            if lo <= xmin:
+                raise RollcontactError(f"{self.searched} = {xmin}: still no shakedown at the lower end of the "
+                                       f"search range [{xmin}, {xmax}]")
+            lo, step = max(xmin, lo - step), 2 * step
+        step = _BRACKET_MARGIN
+        while hi <= lo:
+            hi = min(xmax, lo + step)
+        while True:
+            s = self.classify(hi)
+            if s == 1:
+                break
+            if s == -1:
+                lo = max(lo, hi)
+            if hi >= xmax:
+                raise RollcontactError(f"{self.searched} = {xmax}: still no ratcheting at the upper end of the "
+                                       f"search range [{xmin}, {xmax}]")
+            hi, step = min(xmax, hi + step), 2 * step
+        return lo, hi
+
+    def bisect(self, lo, hi):
+        """Halve [lo, hi] until hi - lo <= tol; an undecided midpoint ends it with a widened bracket."""
+        while hi - lo > self.tol * (1 + 1e-9):
+            m = 0.5 * (lo + hi)
+            s = self.classify(m)
+            if s == -1:
+                lo = m
+            elif s == 1:
+                hi = m
+            else:
+                return self.widen(m, lo, hi) + ("widened",)
+        return lo, hi, "ok"
+
+    def widen(self, m, lo, hi):
+        """Around an undecided m: step outwards by tol/2, tol, 2 tol, ... until each side is decided."""
+        h, lo_found, hi_found = 0.5 * self.tol, False, False
+        while not (lo_found and hi_found):
+            if not lo_found:
+                a = m - h
+                if a <= lo:
+                    lo_found = True
+                elif self.classify(a) == -1:
+                    lo, lo_found = a, True
+            if not hi_found:
+                b = m + h
+                if b >= hi:
+                    hi_found = True
+                elif self.classify(b) == 1:
+                    hi, hi_found = b, True
+            h *= 2
+        return lo, hi
+
+
+def _limit_task(base_toml, base_name, overrides, values, searched, tol, runs_dir, outdir, log) -> dict:
+    """Worker entry of one limit search (picklable in and out); never raises a RollcontactError."""
+    from rollcontact.solver.mdr import limits as lim
+    base = Scene.from_toml_text(base_toml, name=base_name)
+    search = _LimitSearch(base, overrides, values, searched, tol, Path(runs_dir), Path(outdir), log)
+    scene = build_scene(base, overrides, values)
+    row = dict(values)
+    kappas = {k: f"mdr_kappa={k:g}" for k in LIMIT_KAPPAS}
+    if searched == "load.ft":
+        w = scene.amplitude / scene.contact_radius
+        row.update(searched="f_t", w=w, f_t=None)
+        closed = {k: lim.f_t_lim(min(w, 1.0), k) for k in LIMIT_KAPPAS}
+    else:
+        f = scene.f_t
+        row.update(searched="w", f_t=f, w=None)
+        closed = {k: lim.w_lim(f, k) for k in LIMIT_KAPPAS}
+    for k, label in kappas.items():
+        row[label] = closed[k]
+    lo_guess, hi_guess = min(closed.values()) - _BRACKET_MARGIN, max(closed.values()) + _BRACKET_MARGIN
+    try:
+        lo, hi = search.bracket(lo_guess, hi_guess)
+        lo, hi, status = search.bisect(lo, hi)
+        row.update(lower=lo, upper=hi, midpoint=0.5 * (lo + hi), width=hi - lo, status=status, error="")
+    except RollcontactError as exc:
+        row.update(status="failed", error=f"{type(exc).__name__}: {exc}")
+    row.update(probes=search.probes, undecided=";".join(f"{x:.6g}" for x in search.undecided))
+    return row
+
+
+@dataclass
+class LimitReport:
+    """Rows of limits.csv (one per combination of the varied keys) and where they were written."""
+
+    outdir: Path
+    keys: list
+    searched: str
+    rows: list = field(default_factory=list)
+    wall_time: float = 0.0
+
+    @property
+    def limits_csv(self) -> Path:
+        return self.outdir / "limits.csv"
+
+
+def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=None, scheduler=None,
+                  progress=sys.stderr) -> LimitReport:
+    """Shakedown limit of the 3D model for every combination of the axes, by bisection on the run state.
+
+    Varying motion.w (or motion.W) searches f_t,lim(w); varying load.ft (or load.Ft) searches w_lim(f_t);
+    other varied keys (e.g. motion.angle) are carried along. Bisection to `tol` (in f_t or w units) from a
+    bracket around the closed-form limits for kappa = 1 ... 1.5; an undecided probe is rerun with doubled
+    periods at most twice, else the bracket is widened around it (status 'widened'). Probe runs are files
+    in OUTDIR/runs (named like sweep runs, so a rerun reuses them); results in OUTDIR/limits.{csv,h5}
+    (columns: LIMIT_COLUMNS), rewritten after each finished combination. Combinations run in parallel.
+    """
+    t0 = time.perf_counter()
+    axes = [parse_vary(a) if isinstance(a, str) else a for a in axes]
+    keys = [a.key for a in axes]
+    has_ft = [k for k in keys if k in _FT_KEYS]
+    has_w = [k for k in keys if k in _W_KEYS]
+    if has_ft and has_w:
+        raise SceneError(f"limit-search: vary either the amplitude (motion.w) or the load (load.ft), not both "
+                         f"(got {has_w + has_ft}); the other one is searched")
+    if not (has_ft or has_w):
+        raise SceneError("limit-search: vary motion.w (to find f_t,lim(w)) or load.ft (to find w_lim(f_t)), "
+                         "e.g. --vary motion.w=0.1,0.23,0.4")
+    if not tol > 0 or not tol < 0.5:
+        raise InputError(f"--tol = {tol!r}: allowed range is 0 < tol < 0.5 (in units of f_t or w)")
+    searched = "motion.w" if has_ft else "load.ft"
+    lo_x = _SEARCH_RANGE[searched][0]
+    if scheduler:
+        require_dask(scheduler)
+    plan = plan_sweep(base, axes, outdir, list(overrides) + [f"{searched}={lo_x}"])
+    outdir = output_folder(outdir)
+    runs_dir = outdir / "runs"
+    jobs = default_jobs() if jobs is None else int(jobs)
+    if jobs < 1:
+        raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
+    attrs = {"base_scene": base.to_toml(), "overrides": list(overrides) or [""], "tol": float(tol),
+             "searched": searched}
+    if progress is not None:
+        print(f"limit-search: {len(plan)} combination(s), searching {searched} to tol = {tol:g}; probe runs in "
+              f"{runs_dir}", file=progress, flush=True)
+    pool = _make_pool(min(jobs, len(plan)), scheduler)
+    rows = {}
+    try:
+        tasks = [(run, _limit_task, (base.to_toml(), base.name, list(overrides), run.values, searched, float(tol),
+                                     str(runs_dir), str(outdir), progress is not None)) for run in plan]
+        for run, row, failure in completed(pool, tasks):
+            if failure:
+                row = dict(run.values, status="failed", error=failure)
+            row["index"] = run.index
+            rows[run.index] = row
+            write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)
+            if progress is not None:
+                what = (f"{row['searched']} in [{row['lower']:.4f}, {row['upper']:.4f}] ({row['status']})"
+                        if row["status"] != "failed" else f"FAILED ({row['error']})")
+                print(f"limit-search [{len(rows)}/{len(plan)}] {_describe(run.values)}: {what}",
+                      file=progress, flush=True)
+        pool.close()
+        _raise_if_interrupted()
+    except KeyboardInterrupt:
+        pool.stop()
+        write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)
+        if progress is not None:
+            print(f"limit-search: interrupted; {len(rows)} of {len(plan)} search(es) finished are in "
+                  f"{outdir}/limits.csv; rerun the same command to resume (finished probe runs in {runs_dir} are "
+                  "reused)", file=progress, flush=True)
+        raise
+    return LimitReport(outdir, keys, searched, [rows[i] for i in sorted(rows)], time.perf_counter() - t0)

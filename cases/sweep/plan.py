@@ -1,0 +1,206 @@
+"""Sweep plans: the varied scene keys (`--vary`), their combinations as validated scenes, and run file names
+(cases.sweep.runner; theory.md §8).
+
+    --vary load.ft=0.1:0.9:9        range start:stop:count, both ends included (count >= 2; 1 gives start)
+    --vary motion.w=0.1,0.23,0.4    comma list (values parsed as TOML: numbers, or strings such as bem,mdr)
+
+Every combination is the base scene, then the `--set` overrides, then the varied values, validated before any
+run starts. Its file is named after the varied values plus 8 hex digits of sha1 of the full scene TOML, so a
+changed scene gives a new file. Units: the scene's (mm, N, MPa, degrees).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+import hashlib
+import itertools
+import math
+from pathlib import Path
+import re
+import tomllib
+
+import numpy as np
+
+from rollcontact.bem.errors import SceneError
+
+from rollcontact.cases.scene.scene import Scene
+
+_RANGE_DIGITS = 12          # range values are rounded to 12 significant digits (0.30000000000000004 -> 0.3)
+_HASH_CHARS = 8
+
+
+# ----------------------------------------------------------------------------------------------- axes
+@dataclass(frozen=True)
+class Axis:
+    """One varied scene key and its values, in the order given."""
+
+    key: str
+    values: tuple
+
+    @property
+    def label(self) -> str:
+        return self.key
+
+
+def parse_vary(spec: str) -> Axis:
+    """Parse one `--vary section.key=VALUES` argument.
+
+    VALUES is either a range `start:stop:count` (count evenly spaced values, both ends included) or a comma
+    list `v1,v2,...` (one value is allowed). Raises SceneError naming the argument and the expected syntax.
+    """
+    syntax = ("expected --vary section.key=start:stop:count (count >= 1, both ends included) or "
+              "--vary section.key=v1,v2,... e.g. --vary load.ft=0.1:0.9:9 or --vary motion.w=0.1,0.23,0.4")
+    if "=" not in spec:
+        raise SceneError(f"--vary {spec!r}: {syntax}")
+    key, raw = (s.strip() for s in spec.split("=", 1))
+    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*\.[A-Za-z_][A-Za-z0-9_]*", key):
+        raise SceneError(f"--vary {spec!r}: key {key!r} is not of the form section.key; {syntax}")
+    if not raw:
+        raise SceneError(f"--vary {spec!r}: no values; {syntax}")
+    if ":" in raw:
+        parts = raw.split(":")
+        if len(parts) != 3:
+            raise SceneError(f"--vary {spec!r}: a range has three parts start:stop:count; {syntax}")
+        try:
+            start, stop = float(parts[0]), float(parts[1])
+        except ValueError:
+            raise SceneError(f"--vary {spec!r}: range start and stop must be numbers; {syntax}") from None
+        try:
+            count = int(parts[2])
+        except ValueError:
+            raise SceneError(f"--vary {spec!r}: range count {parts[2]!r} must be an integer >= 1; "
+                             f"{syntax}") from None
+        if count < 1:
+            raise SceneError(f"--vary {spec!r}: range count = {count}: allowed range is count >= 1")
+        if not (math.isfinite(start) and math.isfinite(stop)):
+            raise SceneError(f"--vary {spec!r}: range start and stop must be finite numbers")
+        if count == 1:
+            values = (start,)
+        else:
+            values = tuple(float(f"{v:.{_RANGE_DIGITS}g}") for v in np.linspace(start, stop, count))
+        if len(set(values)) != len(values):
+            raise SceneError(f"--vary {spec!r}: the range repeats values; use start != stop")
+        return Axis(key, values)
+    items = [s.strip() for s in raw.split(",")]
+    if any(not s for s in items):
+        raise SceneError(f"--vary {spec!r}: empty item in the comma list; {syntax}")
+    values = tuple(_parse_value(s) for s in items)
+    if len(set(map(repr, values))) != len(values):
+        raise SceneError(f"--vary {spec!r}: a value is listed twice")
+    return Axis(key, values)
+
+
+def _parse_value(raw: str):
+    try:
+        return tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        return raw
+
+
+def _format_value(v) -> str:
+    """Value as written in --set and in file names: shortest round-trip form of floats, 0.0 -> 0."""
+    if isinstance(v, float):
+        if v.is_integer() and abs(v) < 1e15:
+            return str(int(v))
+        return repr(v)
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return v
+    return str(v)
+
+
+def _toml_literal(v) -> str:
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return _format_value(v)
+
+
+# ----------------------------------------------------------------------------------------------- plan
+@dataclass(frozen=True)
+class PlannedRun:
+    """One run of a sweep: its varied values, the full scene (as TOML text, what the run file stores) and
+    its output file."""
+
+    index: int
+    values: dict
+    scene_toml: str
+    path: Path
+    scene_name: str = "scene"
+
+    @property
+    def name(self) -> str:
+        return self.path.name
+
+
+def _short_names(keys) -> dict:
+    """Key -> short label for file names: the part after the section when that is unique in the sweep."""
+    tails = [k.split(".", 1)[1] for k in keys]
+    return {k: (t if tails.count(t) == 1 else k) for k, t in zip(keys, tails)}
+
+
+def run_file_name(values: dict, scene_toml: str) -> str:
+    """Deterministic, filesystem-safe file name: varied values, then 8 hex digits of sha1(scene TOML)."""
+    short = _short_names(list(values))
+    parts = [f"{short[k]}={_format_value(v)}" for k, v in values.items()]
+    stem = re.sub(r"[^A-Za-z0-9._=+-]", "-", "_".join(parts)) or "run"
+    digest = hashlib.sha1(scene_toml.encode()).hexdigest()[:_HASH_CHARS]
+    return f"{stem}__{digest}.h5"
+
+
+def build_scene(base: Scene, overrides, values: dict) -> Scene:
+    """base + `--set` overrides + the varied values (in that order; later wins). Raises SceneError."""
+    assignments = list(overrides) + [f"{k}={_toml_literal(v)}" for k, v in values.items()]
+    return base.with_overrides(assignments)
+
+
+def _refuse_set_of_a_varied_key(overrides, keys):
+    """A --set of the other spelling of a varied key (load.Ft while load.ft is varied) contradicts every run: refused,
+    naming both. A --set of the varied key itself is a base value that the varied values replace (later wins)."""
+    from rollcontact.cases.scene.scene import other_spellings
+    for item in overrides:
+        others = other_spellings(item.split("=", 1)[0].strip())
+        for key in keys:
+            if key in others:
+                raise SceneError(f"--set {item!r} and --vary {key}: two spellings of one quantity; the sweep sets "
+                                 f"{key} in every run, drop the --set")
+
+
+def plan_sweep(base: Scene, axes, outdir, overrides=()) -> list[PlannedRun]:
+    """Every combination of the axes (first axis slowest) as a validated PlannedRun.
+
+    All combinations are validated before anything runs; if any is invalid a SceneError lists them (up to
+    five, with the key, the value and the allowed range from the scene's own validation).
+    """
+    axes = list(axes)
+    keys = [a.key for a in axes]
+    if len(set(keys)) != len(keys):
+        dup = sorted({k for k in keys if keys.count(k) > 1})
+        raise SceneError(f"--vary: key(s) {dup} given more than once; give each key once with all its values")
+    _refuse_set_of_a_varied_key(overrides, keys)
+    try:
+        base_checked = base.with_overrides(list(overrides))
+    except SceneError as exc:
+        raise SceneError(f"--set: {exc}") from None
+    outdir = Path(outdir)
+    runs, bad = [], []
+    for index, combo in enumerate(itertools.product(*(a.values for a in axes))):
+        values = dict(zip(keys, combo))
+        try:
+            scene = build_scene(base, overrides, values)
+        except SceneError as exc:
+            bad.append(f"  {_describe(values)}: {exc}")
+            continue
+        toml = scene.to_toml()
+        runs.append(PlannedRun(index, values, toml, outdir / run_file_name(values, toml), scene.name))
+    if bad:
+        n_total = math.prod(len(a.values) for a in axes)
+        more = f"\n  ... and {len(bad) - 5} more" if len(bad) > 5 else ""
+        raise SceneError(f"{len(bad)} of {n_total} sweep combination(s) are not valid scenes; nothing was run:\n"
+                         + "\n".join(bad[:5]) + more)
+    del base_checked
+    return runs
+
+
+def _describe(values: dict) -> str:
+    return " ".join(f"{k}={_format_value(v)}" for k, v in values.items()) or "(base scene)"
+

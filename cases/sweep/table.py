@@ -1,0 +1,106 @@
+"""The summary tables of sweeps and limit searches: OUTDIR/<stem>.csv and OUTDIR/<stem>.h5, one row per
+finished run (or searched combination), written atomically and read back (cases.sweep.runner, cases.sweep.limit_search).
+
+Units per column in `COLUMN_UNITS` (a varied key takes its scene unit); missing values are empty CSV cells,
+NaN (floats) or -1 (counts) in HDF5.
+"""
+import csv
+import math
+import os
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+from rollcontact.cases.scene.scene import key_unit
+
+SUMMARY_COLUMNS = ("index", "state", "status", "f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period",
+                   "u_stat", "periods_to_shakedown", "steps", "iterations", "wall_time", "file", "error")
+"""Columns of summary.csv / summary.h5 after the varied keys (one column per varied key, named by the key).
+
+index: position in the plan; state: static/shakedown/ratcheting/undecided/gross_sliding ('' if the run
+failed before classifying); status: complete/failed; f_t = Ft/(mu Fn); w = W/a; angle: rolling direction
+relative to Ft (deg); u_sd, du, u_stat: normalised by U0 (seed Eq. 9); U_sd, dU_per_period: mm;
+periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself; file: run file name
+(relative to OUTDIR); error: message of a failed run."""
+
+#: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
+#: run files); a varied key takes its scene unit (cases.scene.key_unit).
+COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "wall_time": "s"}
+_FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "u_stat", "wall_time")
+_INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations")
+
+
+def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS, attrs=None):
+    """Write OUTDIR/<stem>.csv and OUTDIR/<stem>.h5 atomically (temporary file + rename), rows by index.
+
+    CSV: header = varied keys then `columns`; floats in full precision (repr), missing values empty.
+    HDF5: group /runs with one dataset per column (floats with NaN for missing, ints with -1 for missing,
+    strings UTF-8), attributes `varied` (the keys) and any `attrs` given (e.g. the base scene TOML).
+    """
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    rows = sorted(rows, key=lambda r: r.get("index", 0))
+    header = list(keys) + [c for c in columns if c not in keys]
+    tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
+    with open(tmp, "w", newline="") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(header)
+        for r in rows:
+            writer.writerow([_csv_cell(r.get(c)) for c in header])
+    os.replace(tmp, outdir / f"{stem}.csv")
+    tmp = outdir / f".{stem}.h5.{os.getpid()}.tmp"
+    try:
+        with h5py.File(tmp, "w") as h5:
+            h5.attrs["varied"] = list(keys)
+            h5.attrs["columns"] = header
+            for k, v in (attrs or {}).items():
+                h5.attrs[k] = v
+            grp = h5.create_group("runs")
+            for c in header:
+                vals = [r.get(c) for r in rows]
+                ds = grp.create_dataset(c, data=_column_array(c, vals))
+                ds.attrs["units"] = COLUMN_UNITS.get(c) or key_unit(c)
+        os.replace(tmp, outdir / f"{stem}.h5")
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def _csv_cell(v):
+    if v is None:
+        return ""
+    if isinstance(v, float):
+        return "" if math.isnan(v) else repr(v)
+    return v
+
+
+def _column_array(name, vals):
+    present = [v for v in vals if v is not None and v != ""]
+    if name in _INT_COLUMNS or (present and all(isinstance(v, (int, np.integer)) and not isinstance(v, bool)
+                                                for v in present) and name not in _FLOAT_COLUMNS):
+        return np.array([-1 if v is None or v == "" else int(v) for v in vals], dtype=np.int64)
+    if name in _FLOAT_COLUMNS or (present and all(isinstance(v, (int, float, np.number)) for v in present)):
+        return np.array([np.nan if v is None or v == "" else float(v) for v in vals], dtype=np.float64)
+    return np.array(["" if v is None else str(v) for v in vals], dtype=h5py.string_dtype())
+
+
+def read_summary(path) -> list[dict]:
+    """Rows of a summary.csv as dicts (numbers parsed, empty cells None), sorted by index."""
+    with open(path, newline="") as fh:
+        rows = [{k: _csv_parse(k, v) for k, v in r.items()} for r in csv.DictReader(fh)]
+    return sorted(rows, key=lambda r: r.get("index") or 0)
+
+
+def _csv_parse(k, v):
+    if v == "":
+        return None
+    if k in ("state", "status", "file", "error"):
+        return v
+    for conv in (int, float):
+        try:
+            return conv(v)
+        except ValueError:
+            pass
+    return v
+

@@ -1,0 +1,152 @@
+"""Compiled MDR step (numba, cached): the kernels behind `solver.mdr.simulate_mdr` (theory.md §8.2).
+
+Numba twins of `solver.mdr.step` for the gap (s - centre)^2 / R of the sphere (s, centre, R, d, U, anchors
+and bounds in mm; the force targets are Fn/(E* ds) and Ft/(G* ds), mm), and one whole step of the spring row
+in place on the anchors.  Errors are returned as status codes, not raised.
+"""
+import numpy as np
+from numba import njit
+
+
+# ------------------------------------------------------------------- compiled step (numba, cached)
+@njit(cache=True)
+def _approach_kernel(s, centre, R, target, d_guess):
+    """Numba twin of `approach_for_force` for the gap (s - centre)^2/R; returns (d, n_contact) or (nan, -1).
+
+    Starts from d_guess (the previous step's approach): from the left, the first Newton step of the convex
+    force-approach function lands right of the root; from there the iterates decrease monotonically.
+    """
+    gmin = np.inf
+    for i in range(s.size):
+        g = (s[i] - centre) ** 2 / R
+        if g < gmin:
+            gmin = g
+    d = d_guess if d_guess > gmin else gmin + target
+    count = -1
+    for _ in range(200):
+        n = 0
+        acc = 0.0
+        for i in range(s.size):
+            g = (s[i] - centre) ** 2 / R
+            if g < d:
+                n += 1
+                acc += g
+        if n == count:
+            return d, n
+        count = n
+        d = (target + acc) / n
+    return np.nan, -1
+
+
+@njit(cache=True)
+def _rigid_shift_kernel(v, b, target, U_guess):
+    """Numba root of sum clip(U - v_i, -b_i, b_i) = target (all b_i > 0); returns (U, status).
+
+    status 0: solved; 1: |target| > sum b (gross sliding).  A few Newton steps from the previous U shrink a
+    bracket (usually they already land on the exact linear piece); the break points left inside the
+    bracket are then sorted and walked, which makes the result exact like `rigid_shift`.
+    """
+    m = v.size
+    cap = 0.0
+    xmin = np.inf
+    xmax = -np.inf
+    for i in range(m):
+        cap += b[i]
+        xmin = min(xmin, v[i] - b[i])
+        xmax = max(xmax, v[i] + b[i])
+    if abs(target) > cap * (1.0 + 1e-12):
+        return np.nan, 1
+    if m == 0 or target <= -cap:
+        return (xmin if m else U_guess), 0
+    if target >= cap:
+        return xmax, 0
+    lo, flo, hi = xmin, -cap, xmax
+    U = min(max(U_guess, xmin), xmax)
+    for _ in range(6):
+        F = 0.0
+        k_right = 0
+        k_left = 0
+        for i in range(m):
+            x = U - v[i]
+            if x >= b[i]:
+                F += b[i]
+            elif x <= -b[i]:
+                F -= b[i]
+            else:
+                F += x
+            if -b[i] <= x < b[i]:
+                k_right += 1
+            if -b[i] < x <= b[i]:
+                k_left += 1
+        if abs(F - target) <= 1e-14 * cap:
+            return U, 0
+        if F < target:
+            if U > lo:
+                lo, flo = U, F
+            slope = k_right
+        else:
+            hi = min(hi, U)
+            slope = k_left
+        if slope == 0:
+            break
+        Un = U + (target - F) / slope
+        if not (lo < Un < hi):
+            break
+        U = Un
+    # exact walk over the break points inside (lo, hi), starting from F(lo) = flo < target
+    xs = np.empty(2 * m)
+    ks = np.empty(2 * m)
+    n = 0
+    slope = 0.0
+    for i in range(m):
+        if v[i] - b[i] <= lo < v[i] + b[i]:
+            slope += 1.0
+        for x, kink in ((v[i] - b[i], 1.0), (v[i] + b[i], -1.0)):
+            if lo < x < hi:
+                xs[n] = x
+                ks[n] = kink
+                n += 1
+    order = np.argsort(xs[:n])
+    x_prev = lo
+    F = flo
+    for j in range(n):
+        x = xs[order[j]]
+        F_next = F + slope * (x - x_prev)
+        if F_next >= target:
+            return x_prev + (target - F) / slope, 0
+        F = F_next
+        slope += ks[order[j]]
+        x_prev = x
+    if slope > 0.0:
+        return min(x_prev + (target - F) / slope, hi), 0
+    return hi, 0
+
+
+@njit(cache=True)
+def _step_kernel(s, anchor, centre, R, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf):
+    """One MDR step in place on `anchor`; returns (d, U, n_contact, n_stick, status).
+
+    status 0 ok, 1 gross sliding (anchor untouched), 2 normal problem did not settle.
+    """
+    d, n_contact = _approach_kernel(s, centre, R, target_n, d_guess)
+    if n_contact < 0:
+        return np.nan, np.nan, 0, 0, 2
+    m = 0
+    for i in range(s.size):
+        uz = d - (s[i] - centre) ** 2 / R
+        if uz > 0.0:
+            v_buf[m] = anchor[i]
+            b_buf[m] = ratio * uz
+            m += 1
+    U, status = _rigid_shift_kernel(v_buf[:m], b_buf[:m], target_t, U_guess)
+    if status != 0:
+        return d, np.nan, n_contact, 0, status
+    n_stick = 0
+    for i in range(s.size):
+        uz = d - (s[i] - centre) ** 2 / R
+        bound = ratio * uz if uz > 0.0 else 0.0
+        defl = min(max(U - anchor[i], -bound), bound)
+        anchor[i] = U - defl
+        if uz > 0.0 and abs(defl) < bound * (1.0 - 1e-12):
+            n_stick += 1
+    return d, U, n_contact, n_stick, 0

@@ -1,0 +1,138 @@
+"""Classification of an oscillating-rolling run: shakedown, ratcheting, undecided (theory §6.2, §8.3).
+
+Model-independent: it only sees the rigid displacement U recorded at the same phase of the oscillation at
+the end of each period, so the 1-D MDR model (solver.mdr) and the 3-D stepping solver share it.
+
+Input: U_period_end[k] (mm), k = 0 .. P, index 0 = after the loading phase (before the first period),
+index k = end of period k; U0 = mu E* d / G* (mm), the normalisation of seed Eq. 9 (pitfall P3).
+Increments per period: du_k = (U_k - U_{k-1}) / U0, k = 1 .. P.
+
+Criteria (tolerances are parameters of `classify`):
+* 'shakedown'   : the last increment |du_P| < tol (default 1e-4, theory §6.2).  periods_to_shakedown =
+                  the smallest n such that |du_k| < tol for every k > n (0: no period slipped by tol or more);
+                  u_sd = U_P / U0.  A ratcheting run whose increment is below tol cannot be told apart from
+                  shakedown at this tol: tol is the resolution of the classification.
+* 'ratcheting'  : |du_P| >= tol and the increments have settled: |du_P - du_{P-1}| <= settle_rtol |du_P|
+                  (default 2 %) over the last `settle_periods` (default 2) consecutive pairs.  du = du_P.
+* 'undecided'   : neither, i.e. increments above tol that still change by more than settle_rtol per period
+                  (typically a slow decay near the shakedown limit, pitfall P12), or too few periods to
+                  judge.  The message says so, and, for a geometric decay, estimates how many more periods
+                  would bring the increment below tol.
+* 'gross_sliding': never produced here; set by the caller when its solver reports that no equilibrium
+                  exists (Ft > mu Fn), see `gross_sliding`.
+A decay slower than settle_rtol per period is reported as ratcheting: over the periods run it is not
+distinguishable from a constant increment.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import math
+
+import numpy as np
+
+from rollcontact.bem.errors import InputError
+
+STATES = ("shakedown", "ratcheting", "undecided", "gross_sliding")
+
+DEFAULT_TOL = 1e-4
+DEFAULT_SETTLE_RTOL = 0.02
+DEFAULT_SETTLE_PERIODS = 2
+
+
+@dataclass(frozen=True)
+class Classification:
+    """Outcome of a run.
+
+    state: one of STATES.
+    periods_to_shakedown: for 'shakedown', the number of periods after which every increment stayed below
+        tol (0 if none reached it); None otherwise.
+    u_sd: for 'shakedown', the final U/U0; None otherwise.
+    du: the last per-period increment du_P = (U_P - U_{P-1})/U0 (signed), for every state (None if no
+        period was completed).  For 'ratcheting' it is the settled increment per period.
+    dU_per_period: the same increment in mm (du * U0), or None.
+    increments: all du_k, k = 1 .. P (dimensionless).
+    message: one human-readable sentence with the reason (and a suggestion for 'undecided').
+    tol, settle_rtol: the tolerances used.
+    """
+
+    state: str
+    periods_to_shakedown: int | None
+    u_sd: float | None
+    du: float | None
+    dU_per_period: float | None
+    increments: np.ndarray = field(repr=False)
+    message: str = ""
+    tol: float = DEFAULT_TOL
+    settle_rtol: float = DEFAULT_SETTLE_RTOL
+
+    def __post_init__(self):
+        if self.state not in STATES:
+            raise InputError(f"state = {self.state!r}: allowed states are {STATES}")
+
+
+def _check_positive(name, value):
+    if not (isinstance(value, (int, float, np.floating, np.integer)) and math.isfinite(value) and value > 0):
+        raise InputError(f"{name} = {value!r}: must be a finite number > 0")
+
+
+def classify(U_period_end, U0, *, tol=DEFAULT_TOL, settle_rtol=DEFAULT_SETTLE_RTOL,
+             settle_periods=DEFAULT_SETTLE_PERIODS) -> Classification:
+    """Classify a run from U at the end of each period (mm; index 0 = after loading); see module docstring."""
+    _check_positive("U0", U0)
+    _check_positive("tol", tol)
+    _check_positive("settle_rtol", settle_rtol)
+    if not (int(settle_periods) == settle_periods and settle_periods >= 1):
+        raise InputError(f"settle_periods = {settle_periods!r}: must be an integer >= 1")
+    U = np.asarray(U_period_end, dtype=float).ravel()
+    if U.size == 0:
+        raise InputError("U_period_end is empty: need at least the value after loading (index 0)")
+    if not np.all(np.isfinite(U)):
+        raise InputError("U_period_end contains non-finite values (NaN or inf)")
+    du = np.diff(U) / U0
+    P = du.size
+    if P == 0:
+        return Classification("undecided", None, None, None, None, du,
+                              "no complete period was run: nothing to classify", tol, settle_rtol)
+    last = float(du[-1])
+    dU_last = last * U0
+    small = np.abs(du) < tol
+    if small[-1]:
+        big = np.flatnonzero(~small)
+        n_sd = int(big[-1]) + 1 if big.size else 0
+        return Classification(
+            "shakedown", n_sd, float(U[-1] / U0), last, dU_last, du,
+            f"shakedown: |du| < {tol:g} in every period after period {n_sd} (last du = {last:.3e})",
+            tol, settle_rtol)
+    # last increment is not small: settled (ratcheting) or still changing (undecided)?
+    if P >= settle_periods + 1:
+        tail = du[-(settle_periods + 1):]
+        change = np.abs(np.diff(tail))
+        if np.all(change <= settle_rtol * np.abs(tail[1:])):
+            return Classification(
+                "ratcheting", None, None, last, dU_last, du,
+                f"ratcheting: the increment settled at du = {last:.4e} per period (changes <= "
+                f"{settle_rtol:g} relative over the last {settle_periods} periods)", tol, settle_rtol)
+    msg = f"undecided after {P} period(s): last du = {last:.3e} >= tol = {tol:g}"
+    if P >= 2 and 0.0 < abs(last) < abs(du[-2]):
+        q = abs(last) / abs(du[-2])
+        more = math.ceil(math.log(tol / abs(last)) / math.log(q))
+        msg += (f", still decaying (ratio {q:.3f} per period); about {more} more period(s) would bring it "
+                f"below tol if the decay stays geometric - run more periods")
+    elif P >= 2:
+        msg += f", still changing (previous du = {du[-2]:.3e}) - run more periods"
+    else:
+        msg += " - run more periods"
+    return Classification("undecided", None, None, last, dU_last, du, msg, tol, settle_rtol)
+
+
+def gross_sliding(U_period_end, U0, message) -> Classification:
+    """Classification for a run whose solver reported gross sliding (no equilibrium, Ft > mu Fn).
+
+    U_period_end holds whatever period-end values were recorded before the failure (possibly only some).
+    """
+    _check_positive("U0", U0)
+    U = np.asarray(U_period_end, dtype=float).ravel()
+    du = np.diff(U) / U0 if U.size > 1 else np.zeros(0)
+    last = float(du[-1]) if du.size else None
+    return Classification("gross_sliding", None, None, last, None if last is None else last * U0, du,
+                          f"gross sliding: {message}")
