@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import argparse
 import os
+from pathlib import Path
 import sys
 
 from rollcontact.bem.errors import InputError, RollcontactError, SceneError
 
-from rollcontact.cases.scene.scene import Scene, default_scene
 
 
 def _add_run(sub):
@@ -29,65 +29,58 @@ def _add_run(sub):
 
 
 def _run(args) -> int:
-    from rollcontact.cases.results.outputs import check_output, default_output
-    from rollcontact.cases.run.restart import continued_scene, load_restart
-    from rollcontact.cases.run.bem_run import RunInterrupted, format_summary, print_progress, run_scene
+    from rollcontact.cases import api
+    from rollcontact.cases.results.outputs import default_output
+    from rollcontact.cases.run.summary import format_summary
     from rollcontact.cases.sweep.workers import sigterm_as_interrupt
-    source = None
     if args.step is not None and not args.restart:
         raise InputError(f"--step {args.step}: applies only with --restart RUN.h5 (the stored step to continue "
                          "from); to run a scene from the start, leave --step out")
+    if args.restart and args.scene:
+        raise SceneError("give either a scene file or --restart, not both")
+    progress = not args.quiet
+    out = args.output
     if args.restart:
-        if args.scene:
-            raise SceneError("give either a scene file or --restart, not both")
-        source = load_restart(args.restart, args.step)
-        scene = continued_scene(source, args.overrides)
+        run = lambda out: api.restart(args.restart, step=args.step, overrides=args.overrides,  # noqa: E731
+                                      output=out, progress=progress)
+        if out is None:
+            from rollcontact.cases.run.restart import load_restart
+            source = load_restart(args.restart, args.step)
+            out = _default_output(default_output(source.scene.name, args.overrides, source.step), progress)
     else:
-        scene = Scene.from_toml(args.scene) if args.scene else default_scene()
-        if args.overrides:
-            scene = scene.with_overrides(args.overrides)
-    progress = None if args.quiet else print_progress
-    if args.output:
-        out = check_output(args.output)
-    else:
-        out = check_output(default_output(scene.name, args.overrides, source.step if source else None))
-        if progress and (args.overrides or source):
-            progress(f"no -o given: writing to {out} (named after the scene, the restart step and the --set "
-                     "overrides, so the plain scene's file is not overwritten)")
-    if source is not None and out.resolve() == source.path.resolve():
-        raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace "
-                         "its later steps; write to another file")
+        scene = api.load_scene(args.scene, args.overrides)
+        run = lambda out: api.run(scene, out, progress=progress)  # noqa: E731
+        if out is None:
+            out = _default_output(default_output(scene.name, args.overrides), progress and args.overrides)
     sigterm_as_interrupt(flag=False)
     try:
-        if source is None:
-            outcome = run_scene(scene, out, progress=progress)
-        else:
-            if progress:
-                progress(f"continuing {source.path} from step {source.step} (period {source.period})")
-            outcome = run_scene(scene, out, progress=progress, restart=source.state,
-                                restart_history=source.data.history, restart_snapshots=source.snapshots(),
-                                attrs=dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
-                                           restart_overrides=list(args.overrides) or [""]))
-    except RunInterrupted as exc:
-        print(_interrupted_message(exc.outcome), file=sys.stderr)
+        result = run(out)
+    except api.RunInterrupted as exc:
+        print(_interrupted_message(exc.result), file=sys.stderr)
         return 130
     except KeyboardInterrupt:
         print("rollcontact run: interrupted before the first step; nothing written", file=sys.stderr)
         return 130
-    if outcome.path != out:
-        print(f"the run did not complete: written to {outcome.path}, beside the complete run in {out}, "
+    if Path(result.path) != Path(out):
+        print(f"the run did not complete: written to {result.path}, beside the complete run in {out}, "
               "which is kept", file=sys.stderr)
-    print(format_summary(outcome))
-    return 0 if outcome.data.status == "complete" else 1
+    print(format_summary(result))
+    return 0 if result.status == "complete" else 1
 
 
-def _interrupted_message(outcome) -> str:
-    d = outcome.data
-    n = len(d.history["step"])
-    text = f"rollcontact run: interrupted after {n} step(s); they are in {outcome.path} (status 'failed')"
-    if len(d.field_steps):
-        step = int(d.field_steps[-1])
-        text += f"; continue with: rollcontact run --restart {outcome.path} --step {step} -o OUT.h5"
+def _default_output(out, announce):
+    if announce:
+        print(f"no -o given: writing to {out} (named after the scene, the restart step and the --set overrides, so "
+              "the plain scene's file is not overwritten)", file=sys.stderr, flush=True)
+    return out
+
+
+def _interrupted_message(result) -> str:
+    n = len(result.history["step"])
+    text = f"rollcontact run: interrupted after {n} step(s); they are in {result.path} (status 'failed')"
+    if len(result.field_steps):
+        step = int(result.field_steps[-1])
+        text += f"; continue with: rollcontact run --restart {result.path} --step {step} -o OUT.h5"
     return text
 
 

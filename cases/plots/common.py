@@ -24,6 +24,7 @@ import numpy as np  # noqa: E402
 from rollcontact.bem.errors import InputError  # noqa: E402
 
 from rollcontact.cases.results.hdf5 import read_run_file  # noqa: E402
+from rollcontact.cases.results.run_result import RunResult  # noqa: E402
 from rollcontact.cases.results.outputs import output_folder  # noqa: E402
 from rollcontact.cases.scene.scene import Scene  # noqa: E402
 
@@ -52,7 +53,7 @@ class RunView:
     """One run file, with the normalisations and labels the figures need."""
 
     path: Path
-    data: object            # cases.results.hdf5.RunData
+    data: RunResult
     scene: Scene
 
     # --- scalars -------------------------------------------------------------------------------

@@ -6,8 +6,8 @@ Layout (public contract; later versions add to it, never rename):
                         ('complete' or 'failed'), error (message, when failed); a restarted run also
                         restarted_from (source file), restart_step, restart_overrides (the --set items)
     /grid/x, /grid/y    cell-centre coordinates (mm)
-    /history/<name>     one value per step (see README for names and units)
-    /fields/<name>      shape (snapshots, ny, nx); /fields/step says which steps were stored
+    /history/<name>     one value per step (names and units: cases.results.run_result.HISTORY_UNITS)
+    /fields/<name>      shape (snapshots, ny, nx); /fields/step says which steps were stored (FIELD_UNITS)
     /summary            attrs: run summary (state, u_sd, ...); a value that does not apply (u_sd of a
                         ratcheting run, say) is NaN, or -1 for the counts in SUMMARY_COUNTS, as in a
                         sweep's summary.h5 (files of version 0.1.0 before 2026-11-24 wrote the text 'none')
@@ -17,8 +17,6 @@ POSIX file systems. A run that fails still writes what it computed, with status 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from importlib import metadata
 import math
 import os
 from pathlib import Path
@@ -26,16 +24,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-#: Units of the stored quantities (written as a 'units' attribute on every dataset).
-UNITS = {
-    "step": "-", "period": "-", "approach": "mm", "Fn": "N", "contact_area": "mm^2", "iterations": "-",
-    "residual": "-", "U_x": "mm", "U_y": "mm", "F_x": "N", "F_y": "N", "stick_area": "mm^2",
-    "W_x": "mm", "W_y": "mm", "normal_iterations": "-", "tangential_iterations": "-", "outer_iterations": "-",
-    "p": "MPa", "u_z": "mm", "tau_x": "MPa", "tau_y": "MPa", "slip_x": "mm", "slip_y": "mm",
-    "u_x": "mm", "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip", "x": "mm", "y": "mm",
-    "wall_time": "s",
-}
-
+from rollcontact.cases.results.run_result import UNITS, RunResult
 
 #: Summary attributes that are counts: stored as -1 when they do not apply (every other one as NaN).
 SUMMARY_COUNTS = ("periods_to_shakedown", "stopped_at_step", "steps", "steps_planned", "iterations", "nx", "ny",
@@ -43,30 +32,12 @@ SUMMARY_COUNTS = ("periods_to_shakedown", "stopped_at_step", "steps", "steps_pla
 
 
 def version() -> str:
-    try:
-        return metadata.version("rollcontact")
-    except metadata.PackageNotFoundError:
-        return "unknown"
+    """The installed rollcontact version (package metadata), written into every file."""
+    from rollcontact import __version__
+    return __version__
 
 
-@dataclass
-class RunData:
-    """Everything one run file holds, as numpy arrays and plain Python values."""
-
-    scene_toml: str
-    status: str
-    x: np.ndarray
-    y: np.ndarray
-    history: dict = field(default_factory=dict)
-    fields: dict = field(default_factory=dict)
-    field_steps: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
-    summary: dict = field(default_factory=dict)
-    error: str = ""
-    version: str = ""
-    attrs: dict = field(default_factory=dict)   # further root attributes (restarted_from, restart_step, ...)
-
-
-def write_run(path, data: RunData) -> Path:
+def write_run(path, data: RunResult) -> Path:
     """Write `data` to `path` atomically; returns the final path."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -101,7 +72,7 @@ def write_run(path, data: RunData) -> Path:
     return path
 
 
-def read_run_file(path, error, label) -> RunData:
+def read_run_file(path, error, label) -> RunResult:
     """`read_run` for a file named by the user: error(message) (an exception class) when the path is missing, a
     folder, not HDF5, or HDF5 without the run file layout; label prefixes the message (the option or the path)."""
     p = Path(path)
@@ -116,10 +87,10 @@ def read_run_file(path, error, label) -> RunData:
         raise error(f"{label}: not a run file written by rollcontact run ({why})") from None
 
 
-def read_run(path) -> RunData:
-    """Read a run file written by `write_run`."""
+def read_run(path) -> RunResult:
+    """Read a run file written by `write_run` (its `path` set to `path`)."""
     with h5py.File(path, "r") as h5:
-        return RunData(
+        return RunResult(
             scene_toml=_str(h5.attrs["scene"]),
             status=_str(h5.attrs["status"]),
             error=_str(h5.attrs.get("error", "")),
@@ -130,6 +101,7 @@ def read_run(path) -> RunData:
             field_steps=h5["fields/step"][()],
             summary=summary_from_attrs(h5["summary"].attrs),
             attrs={k: _py(v) for k, v in h5.attrs.items() if k not in _ROOT_ATTRS},
+            path=Path(path),
         )
 
 

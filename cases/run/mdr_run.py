@@ -10,7 +10,6 @@ of circles whose diameters are the loaded and the stuck spring lengths (pi L^2/4
 from __future__ import annotations
 
 import math
-from pathlib import Path
 import time
 
 import numpy as np
@@ -18,13 +17,14 @@ import numpy as np
 from rollcontact.bem.errors import InputError
 from rollcontact.solver.mdr.simulate import simulate_mdr
 
-from rollcontact.cases.results.hdf5 import RunData, version, write_run
+from rollcontact.cases.results.hdf5 import version
+from rollcontact.cases.results.run_result import HISTORY_NAMES, RunResult
 from rollcontact.cases.scene.scene import Scene
 
 
-def run_scene_mdr(scene: Scene, out, *, progress=None):
-    from rollcontact.cases.run.bem_run import HISTORY_NAMES, RunOutcome
-
+def run_mdr(scene: Scene, *, progress=None) -> RunResult:
+    """Run `scene` on the 1-D MDR model; the result is not written (its path is None). InputError for a scene the
+    model cannot represent (an ellipse, coupled materials, load levels)."""
     rx, ry = scene.radii
     if rx != ry:
         raise InputError(f"[solver] fidelity = 'mdr' needs a sphere (R), got Rx = {rx}, Ry = {ry} mm: the MDR "
@@ -65,9 +65,7 @@ def run_scene_mdr(scene: Scene, out, *, progress=None):
     else:
         summary["state"] = "gross_sliding" if cls.state == "gross_sliding" else "static"
     s = (res.ds * (np.arange(res.n_springs) - (res.n_springs - 1) / 2))
-    data = RunData(scene_toml=scene.to_toml(), status="complete", x=s, y=np.zeros(1), history=history,
-                   fields={}, field_steps=np.zeros(0, dtype=np.int64), summary=summary, version=version())
-    write_run(out, data)
     if progress:
         progress(f"MDR model: {res.n_springs} springs, {n} steps in {wall * 1e3:.1f} ms")
-    return RunOutcome(Path(out), data, wall)
+    return RunResult(scene_toml=scene.to_toml(), status="complete", x=s, y=np.zeros(1), history=history,
+                     fields={}, field_steps=np.zeros(0, dtype=np.int64), summary=summary, version=version())

@@ -13,7 +13,9 @@ import numpy as np
 from rollcontact.bem.errors import InputError, SceneError
 from rollcontact.solver.rolling.stepping import StepState
 
-from rollcontact.cases.results.hdf5 import RunData, read_run_file
+from rollcontact.cases.results.hdf5 import read_run_file
+from rollcontact.cases.results.run_result import RunResult
+from rollcontact.cases.run.discretise import scene_grid, scene_path
 from rollcontact.cases.scene.scene import Scene
 
 #: The keys a restart may change (--set): none of them enters the stored state (grid, pressure, traction,
@@ -34,7 +36,7 @@ class RestartSource:
 
     path: Path
     scene: Scene
-    data: RunData
+    data: RunResult
     state: StepState
 
     @property
@@ -54,7 +56,7 @@ class RestartSource:
         return steps[:n], {k: np.asarray(v)[:n] for k, v in self.data.fields.items()}
 
 
-def read_source(path) -> RunData:
+def read_source(path) -> RunResult:
     """The run file given to --restart; InputError naming the option if it is missing or not a run file."""
     return read_run_file(path, InputError, f"--restart {path}")
 
@@ -119,7 +121,6 @@ def continued_scene(source: RestartSource, overrides) -> Scene:
 
 def _check_path(source: RestartSource, scene: Scene):
     """The continued path passes through the restart step the same way, on the stored grid."""
-    from rollcontact.cases.run.bem_run import scene_grid, scene_path
     periods = scene.motion.periods
     rolls = source.scene.amplitude > 0 and source.scene.motion.periods > 0
     least = max(source.period, 1) if rolls else source.scene.motion.periods

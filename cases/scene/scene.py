@@ -126,8 +126,20 @@ class Scene(SceneLimits):
             lines += [f"{k} = {_toml_value(v)}" for k, v in vals.items()]
         return "\n".join(lines) + "\n"
 
+    @staticmethod
+    def assignments(overrides) -> list[str]:
+        """`section.key=value` strings (as `--set` takes them) from {"section.key": value}; a list of such strings
+        passes through. Values are written as TOML, so that they parse back to the same value."""
+        if isinstance(overrides, dict):
+            return [f"{key}={_toml_value(value)}" for key, value in overrides.items()]
+        if isinstance(overrides, str):
+            return [overrides]
+        return list(overrides)
+
     def with_overrides(self, assignments) -> "Scene":
-        """A new scene with `section.key=value` strings applied (values parsed as TOML, else as strings)."""
+        """A new scene with overrides applied: `section.key=value` strings (values parsed as TOML, else as strings),
+        or a dict {"section.key": value}."""
+        assignments = self.assignments(assignments)
         data = self.to_dict()
         for key in self.derived:  # re-derived from the overridden scene unless set explicitly
             sec, name = key.split(".")

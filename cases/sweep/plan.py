@@ -89,6 +89,16 @@ def parse_vary(spec: str) -> Axis:
     return Axis(key, values)
 
 
+def vary_spec(key: str, values) -> str:
+    """The `--vary` string of a key and its values: a list or tuple of values, or a string as `--vary` takes it
+    after the '=' (a range "start:stop:count" or a comma list)."""
+    if isinstance(values, str):
+        return f"{key}={values}"
+    if not isinstance(values, (list, tuple)):
+        values = [values]
+    return f"{key}={','.join(_toml_literal(v) for v in values)}"
+
+
 def _parse_value(raw: str):
     try:
         return tomllib.loads(f"v = {raw}")["v"]

@@ -75,16 +75,16 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str) -> dict:
     A run that fails inside the stepping loop has a file with status 'failed' (written by run_scene);
     one that fails before it (e.g. a grid above the element limit) has no file, only the returned error.
     """
-    from rollcontact.cases.run.bem_run import run_scene
+    from rollcontact.cases.run.scene_run import run_scene
     t0 = time.perf_counter()
     try:
         scene = Scene.from_toml_text(scene_toml, name=scene_name)
-        outcome = run_scene(scene, out_path)
+        result = run_scene(scene, out_path)
     except RollcontactError as exc:
         return {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "summary": {},
                 "wall_time": time.perf_counter() - t0}
-    d = outcome.data
-    return {"status": d.status, "error": d.error, "summary": dict(d.summary), "wall_time": outcome.wall_time}
+    return {"status": result.status, "error": result.error, "summary": dict(result.summary),
+            "wall_time": result.wall_time}
 
 
 def _row(run: PlannedRun, result: dict, outdir: Path) -> dict:

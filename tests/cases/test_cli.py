@@ -68,7 +68,7 @@ def test_mdr_fidelity_writes_the_same_history_layout(tmp_path):
     out = tmp_path / "mdr.h5"
     assert main(["run", "-q", "-o", str(out), "--set", 'solver.fidelity="mdr"']) == 0
     d = read_run(out)
-    from rollcontact.cases.run.bem_run import HISTORY_NAMES
+    from rollcontact.cases.results.run_result import HISTORY_NAMES
     assert set(d.history) == set(HISTORY_NAMES)
     # the 1D MDR model reaches the pure-MDR closed form u_sd(f_t, w, kappa = 3/2) (seed Eq. 15, theory 8.4; with
     # 4001 springs and dW = 0.2 mm measured within 6e-8), larger than the 3D model's at f_t 0.46, w 0.23

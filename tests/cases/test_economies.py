@@ -10,7 +10,8 @@ import math
 import pytest
 
 from rollcontact.bem.operator import HalfSpaceOperator
-from rollcontact.cases.run.bem_run import run_scene, scene_grid, scene_path
+from rollcontact.cases.run.discretise import scene_grid, scene_path
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 
 SEED_ELEMENTS = (3050, 4200)     # seed: 3050-4200 elements for W = 1.2-3.4 mm at dx = 0.2 mm (P14)
@@ -63,12 +64,12 @@ def test_field_snapshots_only_where_asked(tmp_path):
                                                 f"output.fields={mode}"])
         out = run_scene(scene, tmp_path / f"{mode}.h5")
         sizes[mode] = (tmp_path / f"{mode}.h5").stat().st_size
-        snaps[mode] = len(out.data.field_steps)
-    assert snaps["none"] == 0 and snaps["all"] == out.data.summary["steps"]
+        snaps[mode] = len(out.field_steps)
+    assert snaps["none"] == 0 and snaps["all"] == out.summary["steps"]
     assert 0 < snaps["reversals"] < snaps["all"] / 2
     assert sizes["none"] < sizes["reversals"] < sizes["all"] / 2
 
 
 def test_mdr_fidelity_stores_no_fields(tmp_path):
     out = run_scene(default_scene().with_overrides(["solver.fidelity=mdr"]), tmp_path / "mdr.h5")
-    assert len(out.data.field_steps) == 0 and out.data.summary["state"] == "shakedown"
+    assert len(out.field_steps) == 0 and out.summary["state"] == "shakedown"

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 from rollcontact.solver.analytic import HertzEllipse
 
@@ -20,7 +20,7 @@ def test_elliptic_scene_has_hertz_semi_axes_along_the_right_axes(tmp_path, rx, r
     scene = default_scene().with_overrides([f"geometry.Rx={rx}", f"geometry.Ry={ry}", "motion.periods=0",
                                             "grid.dx=0.25", "grid.dy=0.25", "output.fields=all"])
     assert scene.radii == (rx, ry)
-    d = run_scene(scene, tmp_path / "ellipse.h5").data
+    d = run_scene(scene, tmp_path / "ellipse.h5")
     assert d.status == "complete"
     exact = HertzEllipse(rx, ry, scene.material_pair.E_star, scene.load.Fn)
     sx, sy = exact.a, exact.b                       # HertzEllipse: a along x, b along y

@@ -5,12 +5,13 @@ import h5py
 import numpy as np
 import pytest
 
-from rollcontact.cases.results.hdf5 import RunData, is_complete, read_run, write_run
+from rollcontact.cases.results.hdf5 import is_complete, read_run, write_run
+from rollcontact.cases.results.run_result import RunResult
 
 
 def sample(status="complete"):
     rng = np.random.default_rng(0)
-    return RunData(scene_toml="[geometry]\nR = 40.0\n", status=status, x=np.arange(4) * 0.2,
+    return RunResult(scene_toml="[geometry]\nR = 40.0\n", status=status, x=np.arange(4) * 0.2,
                    y=np.arange(3) * 0.2, history={"step": np.arange(5), "approach": rng.random(5)},
                    fields={"p": rng.random((2, 3, 4)), "region": np.ones((2, 3, 4), dtype=np.int8)},
                    field_steps=np.array([0, 4]), summary={"state": "shakedown", "u_sd": 0.5, "x": None})

@@ -17,7 +17,7 @@ from rollcontact.cases.cli.main import build_parser
 from rollcontact.cases.cli.plot_cmd import run_cli
 from rollcontact.cases.plots.common import DPI, FIGSIZE, open_run, seed_regions
 from rollcontact.cases.plots.sweep_figures import read_folder, read_limits
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import Scene, default_scene
 
 COARSE = ["grid.dx=0.4", "motion.dW=0.4", "motion.periods=5", "solver.shakedown_tol=1e-3"]

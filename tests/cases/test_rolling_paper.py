@@ -7,7 +7,7 @@ regions of seed Sect. 3.2, the Coulomb bound, and the static limit w = 0 (Cattan
 import numpy as np
 import pytest
 
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 from rollcontact.solver.mdr.limits import KAPPA_PARALLEL, KAPPA_PERPENDICULAR, u_shakedown
@@ -18,7 +18,7 @@ SETTINGS = {"parallel": 0.0, "perpendicular": 90.0}
 def paper_run(tmp_path_factory, setting, f_t, *extra):
     scene = default_scene().with_overrides([f"motion.angle={SETTINGS[setting]}", f"load.ft={f_t}", *extra])
     path = tmp_path_factory.mktemp("rolling") / f"{setting}_{f_t}.h5"
-    return run_scene(scene, path).data
+    return run_scene(scene, path)
 
 
 @pytest.fixture(scope="module")

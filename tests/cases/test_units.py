@@ -6,7 +6,7 @@ import h5py
 import pytest
 
 from rollcontact.cases.sweep.limit_search import search_limits
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import Scene, shipped_scene_path
 from rollcontact.cases.sweep.runner import run_sweep
 

@@ -15,7 +15,7 @@ import pytest
 
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.bem.errors import ConvergenceError
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 from rollcontact.solver.analytic import CattaneoMindlin, HertzEllipse, HertzSphere
 from rollcontact.solver.rolling.coupled import solve_coupled_step
@@ -125,7 +125,7 @@ def rolling(overrides, tmp_path):
     scene = default_scene().with_overrides(overrides + [f"grid.dy={dx[0]}" if dx else "grid.dy=0.4",
                                                         "output.fields=reversals", f"solver.max_iter={MAX_ITER}"])
     out = run_scene(scene, tmp_path / "run.h5")
-    d, h = out.data, out.data.history
+    d, h = out, out.history
     assert len(h["step"]) > 0
     assert np.all(np.asarray(h["normal_iterations"]) <= MAX_ITER)
     assert np.all(np.asarray(h["tangential_iterations"]) <= MAX_ITER)
@@ -193,6 +193,6 @@ def test_a_rolling_run_that_cannot_converge_keeps_its_steps_and_names_the_regime
     ConvergenceError's regime in its error text (theory §6.2 step 4 cannot finish)."""
     scene = default_scene().with_overrides(["load.ft=0.99", "grid.dx=0.4", "grid.dy=0.4", "motion.dW=0.4",
                                             "motion.periods=1", "solver.max_iter=3"])
-    d = run_scene(scene, tmp_path / "run.h5").data
+    d = run_scene(scene, tmp_path / "run.h5")
     assert d.status == "failed"
     assert d.error.startswith("ConvergenceError") and "regime" in d.error, d.error

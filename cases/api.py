@@ -1,0 +1,138 @@
+"""The Python API of rollcontact, exposed as `import rollcontact` (the `rollcontact` command is a thin layer over it).
+
+    scene = rollcontact.load_scene(overrides={"load.ft": 0.6, "motion.periods": 4})   # the paper scene, changed
+    result = rollcontact.run(scene)                         # in memory; run(scene, "out.h5") also writes HDF5
+    result.summary["u_sd"], result.history["U_x"], result.field("p")
+    same = rollcontact.read_run("out.h5")                   # a stored run as the same RunResult
+    rollcontact.sweep(scene, {"load.ft": [0.2, 0.4], "motion.angle": [0, 90]}, "results/sweep")
+    rollcontact.limit_search(scene, {"motion.w": [0.23]}, "results/limits")
+
+Units: mm, N, MPa, degrees; dimensionless f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9). Errors are the
+CLI's: SceneError (a scene key out of range, naming the key and the range), InputError (a bad argument, naming
+it), ConvergenceError; all are RollcontactError. A run that fails still returns its finished steps with
+status 'failed'; Ctrl-C raises RunInterrupted, whose `result` holds them.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from rollcontact.bem.errors import ConvergenceError, InputError, RollcontactError, SceneError
+from rollcontact.cases.results.hdf5 import read_run_file
+from rollcontact.cases.results.outputs import check_output
+from rollcontact.cases.results.run_result import RunInterrupted, RunResult
+from rollcontact.cases.scene.scene import Scene, default_scene
+
+__all__ = ["load_scene", "run", "restart", "read_run", "sweep", "limit_search", "RunResult", "Scene",
+           "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted"]
+
+
+def load_scene(path=None, overrides=None) -> Scene:
+    """A validated scene: the TOML file `path` (str or Path), or the embedded default (the seed paper's Table 1,
+    perpendicular setting, f_t = 0.46, w = 0.23) when `path` is None.
+
+    overrides: {"section.key": value} (e.g. {"load.ft": 0.77, "motion.angle": 0}), or a list of
+    "section.key=value" strings as `--set` takes them. SceneError names a key that is unknown or out of range.
+    """
+    scene = Scene.from_toml(path) if path is not None else default_scene()
+    return scene.with_overrides(overrides) if overrides else scene
+
+
+def run(scene: Scene, output=None, *, progress=False) -> RunResult:
+    """Run `scene` on its model ([solver] fidelity: "bem", or "mdr" for the 1-D MDR model) and return the result.
+
+    output: an HDF5 file to write (str or Path; the result's `path`), or None to keep the result in memory only.
+    progress: True for progress lines on stderr, a callable(message), or False for none.
+    """
+    from rollcontact.cases.run.scene_run import run_scene
+    out = check_output(output) if output is not None else None
+    return run_scene(_as_scene(scene), out, progress=_progress(progress))
+
+
+def restart(path, *, step=None, overrides=None, output=None, progress=False) -> RunResult:
+    """Continue the stored run `path` from a stored step (default: the last) and return the whole run (the source's
+    history and snapshots up to that step, then the continuation).
+
+    overrides: only the keys a restart may change (cases.run.restart.RESTART_SAFE_KEYS, e.g. {"motion.periods": 20}).
+    output: the new HDF5 file (not `path` itself), or None to keep the result in memory.
+    """
+    from rollcontact.cases.run.restart import continued_scene, load_restart
+    from rollcontact.cases.run.scene_run import run_scene
+    source = load_restart(path, step)
+    items = Scene.assignments(overrides) if overrides else []
+    scene = continued_scene(source, items)
+    out = check_output(output) if output is not None else None
+    if out is not None and out.resolve() == source.path.resolve():
+        raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace its "
+                         "later steps; write to another file")
+    attrs = dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
+                 restart_overrides=items or [""])
+    progress = _progress(progress)
+    if progress:
+        progress(f"continuing {source.path} from step {source.step} (period {source.period})")
+    return run_scene(scene, out, progress=progress, restart=source, attrs=attrs)
+
+
+def read_run(path) -> RunResult:
+    """The run stored in the HDF5 file `path` (written by `run` or `rollcontact run`) as a RunResult. InputError
+    when the file is missing or is not a run file."""
+    return read_run_file(path, InputError, str(path))
+
+
+def sweep(scene: Scene, vary, output, *, overrides=None, jobs=None, scheduler=None, progress=False):
+    """Run every combination of the varied keys (as `rollcontact sweep`): one HDF5 file per run in the folder
+    `output`, with output/summary.csv and summary.h5; a rerun resumes. Returns a SweepReport (planned, ran,
+    skipped, failed, rows: one dict per finished run).
+
+    vary: {"section.key": values}, values a list ([0.2, 0.4]) or a range string "start:stop:count"; or a list
+    of `--vary` strings. overrides: as in `load_scene`, applied to every run before the varied values.
+    jobs: local worker processes (default: the number of cores; 1 = this process); scheduler: a Dask scheduler
+    address (the `dask` extra). progress: True for progress lines on stderr.
+    """
+    from rollcontact.cases.sweep.runner import run_sweep
+    return run_sweep(_as_scene(scene), vary_specs(vary), output, overrides=Scene.assignments(overrides or []),
+                     jobs=jobs, scheduler=scheduler, progress=_stream(progress))
+
+
+def limit_search(scene: Scene, vary, output, *, overrides=None, tol=0.01, jobs=None, scheduler=None,
+                 progress=False):
+    """The 3D shakedown limit by bisection on the run state (as `rollcontact limit-search`): varying motion.w
+    searches f_t,lim(w), varying load.ft searches w_lim(f_t), other varied keys are carried along; to `tol` (in f_t
+    or w). Results in output/limits.csv and limits.h5, probe runs in output/runs. Returns a LimitReport (rows:
+    one dict per combination with lower, upper, midpoint, status and the MDR closed forms).
+
+    vary, overrides, jobs, scheduler, progress: as in `sweep`.
+    """
+    from rollcontact.cases.sweep.limit_search import search_limits
+    return search_limits(_as_scene(scene), vary_specs(vary), output, overrides=Scene.assignments(overrides or []),
+                         tol=tol, jobs=jobs, scheduler=scheduler, progress=_stream(progress))
+
+
+def vary_specs(vary) -> list[str]:
+    """`--vary` strings from {"section.key": values or "start:stop:count"} (a list of strings passes through)."""
+    from rollcontact.cases.sweep.plan import vary_spec
+    if isinstance(vary, dict):
+        return [vary_spec(key, values) for key, values in vary.items()]
+    if isinstance(vary, str):
+        return [vary]
+    return list(vary)
+
+
+def _as_scene(scene) -> Scene:
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, (str, Path)):
+        return load_scene(scene)
+    raise InputError(f"scene: expected a Scene (rollcontact.load_scene) or a TOML file path, got "
+                     f"{type(scene).__name__}")
+
+
+def _progress(progress):
+    from rollcontact.cases.run.scene_run import print_progress
+    if callable(progress):
+        return progress
+    return print_progress if progress else None
+
+
+def _stream(progress):
+    import sys
+    return sys.stderr if progress else None

@@ -1,0 +1,113 @@
+"""The result of one run, `RunResult`: what `rollcontact.run` returns, what a run file holds and what
+`rollcontact.read_run` reads back, as numpy arrays and plain Python values. Units: mm, N, MPa, s.
+
+The names below are the public contract of the HDF5 layout too (cases.results.hdf5; README, "HDF5 layout"):
+later versions add names, never rename them.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+#: /history: one value per step, name -> unit. W_x, W_y: sphere centre; U_x, U_y: rigid shift of the sphere
+#: relative to the substrate far field; F_x, F_y: tangential force; the iteration counts are FFT-convolution
+#: products of the step (all outer iterations of a coupled step summed).
+HISTORY_UNITS = {
+    "step": "-", "period": "-", "W_x": "mm", "W_y": "mm", "approach": "mm", "Fn": "N", "contact_area": "mm^2",
+    "stick_area": "mm^2", "U_x": "mm", "U_y": "mm", "F_x": "N", "F_y": "N", "iterations": "-",
+    "normal_iterations": "-", "tangential_iterations": "-", "outer_iterations": "-", "residual": "-",
+    "wall_time": "s",
+}
+HISTORY_NAMES = tuple(HISTORY_UNITS)
+
+#: /fields: snapshots of shape (stored steps, ny, nx), name -> unit. p, tau: pressure and traction exerted by the
+#: sphere on the substrate; u: displacements of the substrate surface relative to the sphere; slip: of that step.
+FIELD_UNITS = {
+    "p": "MPa", "u_z": "mm", "tau_x": "MPa", "tau_y": "MPa", "slip_x": "mm", "slip_y": "mm", "u_x": "mm",
+    "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip",
+}
+FIELD_NAMES = tuple(FIELD_UNITS)
+
+#: /summary: name -> unit ('-': dimensionless, a count or text). Normalised values follow seed Eq. 9:
+#: f_t = Ft/(mu Fn), w = W/a, u = U/U0 with U0 = mu E* d/G*. Values that do not apply are None.
+SUMMARY_UNITS = {
+    "state": "-", "periods_to_shakedown": "-", "U_sd": "mm", "u_sd": "-", "dU_per_period": "mm", "du": "-",
+    "U_stat": "mm", "u_stat": "-", "U0": "mm", "a": "mm", "d": "mm", "p0": "MPa", "f_t": "-", "w": "-",
+    "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
+    "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
+    "springs": "-", "ds": "mm",
+}
+
+#: Units of every stored dataset (its 'units' attribute in HDF5).
+UNITS = {**HISTORY_UNITS, **FIELD_UNITS, "x": "mm", "y": "mm"}
+
+
+@dataclass
+class RunResult:
+    """One run: the scene it ran, its per-step history, the stored field snapshots and the summary.
+
+    * `history[name]`: 1-D arrays, one value per finished step (names and units: HISTORY_UNITS), e.g.
+      `history["U_x"]` (mm), `history["F_x"]` (N), `history["period"]` (0 = loading phase).
+    * `fields[name]`: arrays of shape (len(field_steps), ny, nx) on the world-fixed grid `x` (nx,), `y` (ny,) in mm
+      (names and units: FIELD_UNITS); `field_steps` lists the stored steps (0-based). `field(name, step)` picks one.
+      A run of the 1-D MDR model stores no fields; its `x` holds the spring positions.
+    * `summary`: plain values (names and units: SUMMARY_UNITS), e.g. `summary["state"]` ('static', 'shakedown',
+      'ratcheting', 'undecided', 'gross_sliding', 'incomplete'), `summary["u_sd"]`, `summary["U_sd"]` (mm);
+      None where a value does not apply (u_sd of a ratcheting run).
+    * `status`: 'complete' or 'failed' (then `error` says why); `path`: the HDF5 file, None if not written.
+    """
+
+    scene_toml: str
+    status: str
+    x: np.ndarray
+    y: np.ndarray
+    history: dict = field(default_factory=dict)
+    fields: dict = field(default_factory=dict)
+    field_steps: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    summary: dict = field(default_factory=dict)
+    error: str = ""
+    version: str = ""
+    attrs: dict = field(default_factory=dict)   # further root attributes (restarted_from, restart_step, ...)
+    path: Path | None = None
+
+    @property
+    def scene(self):
+        """The scene of the run as a `Scene` (parsed from `scene_toml`)."""
+        from rollcontact.cases.scene.scene import Scene
+        name = Path(self.path).stem if self.path else "scene"
+        return Scene.from_toml_text(self.scene_toml, name=name, run_limits=False)
+
+    @property
+    def state(self) -> str | None:
+        """summary['state']: 'static', 'shakedown', 'ratcheting', 'undecided', 'gross_sliding' or 'incomplete'."""
+        return self.summary.get("state")
+
+    @property
+    def wall_time(self) -> float:
+        """Wall time of the run (s), from the start of the run to its summary."""
+        return float(self.summary.get("wall_time", float("nan")))
+
+    def field(self, name: str, step: int | None = None) -> np.ndarray:
+        """The (ny, nx) snapshot of field `name` at a stored `step` (default: the last stored one); units in
+        FIELD_UNITS. KeyError names the stored steps when `step` was not stored."""
+        steps = [int(s) for s in np.asarray(self.field_steps)]
+        if name not in self.fields:
+            raise KeyError(f"field {name!r}: not stored; stored fields: {sorted(self.fields)}")
+        if not steps:
+            raise KeyError(f"field {name!r}: this run stored no snapshots (output.fields = 'none', or the MDR model)")
+        step = steps[-1] if step is None else int(step)
+        if step not in steps:
+            raise KeyError(f"step {step}: its fields were not stored; stored steps: {steps}")
+        return np.asarray(self.fields[name])[steps.index(step)]
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C (or SIGTERM through the CLI) during a run: `result` holds the finished steps (status 'failed'), and its
+    `path` the file they were written to (None when the run writes no file)."""
+
+    def __init__(self, result: RunResult):
+        super().__init__(f"interrupted; {len(result.history.get('step', []))} step(s) finished"
+                         + (f", written to {result.path}" if result.path else ""))
+        self.result = result
