@@ -48,7 +48,7 @@ class HertzSphere:
         return np.where(r <= a, out, outside)
 
 
-def _check_ft(f_t):
+def check_ft(f_t):
     if not (0.0 <= f_t <= 1.0):
         raise InputError(f"f_t = Ft/(mu Fn) = {f_t!r}: allowed range is 0 <= f_t <= 1")
 
@@ -71,12 +71,12 @@ class CattaneoMindlin:
 
     def stick_radius(self, f_t) -> float:
         """c = a (1 - f_t)^(1/3) (mm), seed Eq. 5."""
-        _check_ft(f_t)
+        check_ft(f_t)
         return self.hertz.a * (1.0 - f_t) ** (1.0 / 3.0)
 
     def shift(self, f_t) -> float:
         """U_stat = U0 (1 - (1 - f_t)^(2/3)) (mm), seed Eq. 4."""
-        _check_ft(f_t)
+        check_ft(f_t)
         return self.U0 * (1.0 - (1.0 - f_t) ** (2.0 / 3.0))
 
     def traction(self, r, f_t):
@@ -93,7 +93,7 @@ class CattaneoMindlin:
 
         U(f) = U_load(f_max) - 2 U_load((f_max - f)/2)   (Johnson 1985, §7.3).
         """
-        _check_ft(f_t_max)
+        check_ft(f_t_max)
         if not (-f_t_max <= f_t <= f_t_max):
             raise InputError(f"f_t = {f_t!r}: unloading branch needs -{f_t_max} <= f_t <= {f_t_max}")
         return self.shift(f_t_max) - 2.0 * self.shift(0.5 * (f_t_max - f_t))
@@ -183,3 +183,92 @@ class HertzEllipse:
         """p(x, y) = p0 sqrt(1 - x^2/a^2 - y^2/b^2) inside, 0 outside (MPa); x, y in mm."""
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         return self.p0 * np.sqrt(np.clip(1.0 - (x / self.a) ** 2 - (y / self.b) ** 2, 0.0, None))
+
+
+def spence_beta_over_mu(c_over_a) -> float:
+    """|beta|/mu at which the stick zone of a monotonically loaded Hertz contact has radius c = (c/a) a.
+
+    The closed-form side of the equation solved by `spence_stick_ratio` (see there), with k = c/a in (0, 1):
+
+        |beta|/mu = 2 k K(m = 1 - k^2) / ln((1 + k)/(1 - k)),
+
+    K the complete elliptic integral of the first kind (parameter m, scipy's convention). Decreases
+    monotonically from +inf (k -> 0) to 0 (k -> 1).
+    """
+    from scipy.special import ellipkm1
+
+    k = float(c_over_a)
+    if not (0.0 < k < 1.0):
+        raise InputError(f"c/a = {c_over_a!r}: allowed range is 0 < c/a < 1")
+    return 2.0 * k * float(ellipkm1(k * k)) / (2.0 * math.atanh(k))
+
+
+def spence_stick_ratio(beta, mu) -> float:
+    """Radius ratio c/a of the central stick zone of a Hertz contact of dissimilar materials under a normal
+    load increased monotonically from zero, with no tangential force (Spence 1975).
+
+    Parameters: beta, Dundurs' second constant of the pair (`bem.materials.MaterialPair.beta`, sphere =
+    body 1, substrate = body 2; -0.5 <= beta <= 0.5); mu > 0, the Coulomb coefficient. Returns c/a in
+    [0, 1]: 1 for beta = 0 (no slip: the pressure then displaces both surfaces alike), -> 0 as |beta|/mu
+    grows. c/a stays constant during the loading (the problem is self-similar) and depends on |beta|/mu only.
+
+    Background (D. A. Spence, "The Hertz contact problem with finite friction", J. Elasticity 5 (1975)
+    297-319; Johnson, Contact Mechanics, 1985, ch. 5). The pressure p displaces the two surfaces radially
+    by different amounts (by -(2 beta/E*) (1/r) int_0^r p s ds relative to each other, theory §2.2); friction
+    resists it with a radial traction that sticks in r < c and slips, |q| = mu p, in the annulus c < r < a.
+    Only the first-order coupling is kept: the pressure is Hertz's, unaffected by q (the effect of q on p is
+    of order beta mu). Because every field grows self-similarly with a, the load increment is a flat-punch
+    pressure dp ~ 1/sqrt(a^2 - r^2). Writing the radial problem with Hankel transforms of order 1 and
+    Abel-type representations (Sneddon), the stick condition du = 0 on r < c fixes the Abel density of dq
+    there to (beta/pi) ln((a + t)/(a - t)) per unit flat-punch density; the slip condition dq = mu dp
+    fixes it to (2 t/(pi a)) mu K(sqrt(1 - t^2/a^2)) on c < t < a. A bounded traction at r = c (and then
+    a continuous one) requires the two to meet at t = c:
+
+        |beta|/mu = 2 k K(m = 1 - k^2) / ln((1 + k)/(1 - k)),    k = c/a          (`spence_beta_over_mu`)
+
+    Solved here for k with brentq in the variable L = ln((1 + k)/(1 - k)) (k = tanh(L/2)), which keeps
+    both ends representable. Limits: c/a -> 4 exp(-|beta|/mu) for |beta|/mu -> inf (almost full slip) and
+    1 - c/a -> 2 exp(-pi mu/|beta|) for |beta|/mu -> 0 (almost full stick); c/a = 0.9, 0.75, 0.5, 0.2 at
+    |beta|/mu = 1.0115, 1.3910, 1.9629, 2.9755.
+
+    Signs: in the slip annulus the traction on the substrate is radial, q_r = -sign(beta) mu p: inward for
+    beta > 0 (the pressure draws the sphere's surface inward more than the substrate's, (1 - 2 nu1)/G1 >
+    (1 - 2 nu2)/G2), outward for beta < 0 (e.g. a rigid sphere on an elastic substrate).
+
+    What it was checked against: the equation above is a derivation made for this module (the 1975 paper
+    itself could not be consulted here), so it was checked (i) against its limits (c/a -> 1 as
+    |beta|/mu -> 0, -> 0 as |beta|/mu -> inf, monotone in between) and (ii) against the coupled BEM solver
+    (tests/solver/test_coupled_spence.py), which solves the full problem independently. Equivalent radius
+    of the discrete stick zone, dx = a/80, 400 load steps from 0.15 a: c/a = 0.7630 against 0.7633
+    (beta = -0.048, mu = 0.035) and 0.3490 against 0.3493 (beta = +0.048, mu = 0.020); at
+    |beta|/mu = 1.668 with beta mu = 2.9e-4 (dx = a/40, 150 steps), 0.6297 against 0.6264; the slip
+    traction has the sign above in every case. The neglected effect of q on p lowers the discrete c/a by
+    roughly 0.6-0.85 beta mu (at |beta|/mu = 1.668: -0.005 at beta mu = 0.008, the same for either sign of
+    beta; -0.07 at beta mu = 0.083, where the contact radius also shrinks by about 1.5 %), so c/a is a
+    function of beta/mu alone only while beta mu is small.
+    """
+    from scipy.optimize import brentq
+    from scipy.special import ellipkm1
+
+    beta, mu = float(beta), float(mu)
+    if not (math.isfinite(mu) and mu > 0):
+        raise InputError(f"mu = {mu!r}: the friction coefficient must be finite and > 0")
+    if not (math.isfinite(beta) and abs(beta) <= 0.5):
+        raise InputError(f"beta = {beta!r}: Dundurs' beta lies in -0.5 <= beta <= 0.5")
+    x = abs(beta) / mu
+    if x == 0.0:
+        return 1.0
+    if x > 300.0:
+        # c/a < 1e-130: the asymptote is exact to round-off (relative error O(k^2 ln k)), and k^2 would
+        # underflow in the equation beyond x ~ 350
+        return 4.0 * math.exp(-x)
+
+    def mismatch(L):
+        k = math.tanh(0.5 * L)
+        return 2.0 * k * float(ellipkm1(k * k)) / L - x
+
+    # brackets from the two asymptotes: L = 2 exp(-x), i.e. k = exp(-x), a quarter of the small-k root
+    # (mismatch about ln 4 > 0 there), and L = 2 pi / x (mismatch about -x/2); both widened for moderate x
+    lo, hi = min(2.0 * math.exp(-x), 1e-6), max(2.0 * math.pi / x, 50.0)
+    L = brentq(mismatch, lo, hi, xtol=1e-300, rtol=1e-15, maxiter=500)
+    return math.tanh(0.5 * L)
