@@ -1,14 +1,29 @@
 """Elastic half-space: materials, world-fixed grid, influence coefficients, FFT convolution operator.
 
-Imports nothing else of rollcontact. Units: mm, N, MPa (influence coefficients in mm/MPa).
-"""
-from rollcontact.bem.errors import (
-    ConvergenceError, ContactEdgeError, GrossSlidingError, InputError, RollcontactError, SceneError)
-from rollcontact.bem.grid import Grid, contact_box
-from rollcontact.bem.influence import influence_coefficients
-from rollcontact.bem.materials import Material, MaterialPair
-from rollcontact.bem.operator import HalfSpaceOperator
+    errors      the project's exceptions (RollcontactError and its kinds)
+    materials   elastic constants of a pair of bodies (theory.md §1)
+    grid        the world-fixed grid of piecewise-constant elements
+    influence   Boussinesq-Cerruti influence coefficients of a rectangular element (theory.md §2)
+    operator    the influence coefficients applied by zero-padded FFT convolution (theory.md §3)
+    wisdom      FFTW wisdom cached on disk (and the pyfftw import the operator uses)
 
-__all__ = ["ConvergenceError", "ContactEdgeError", "GrossSlidingError", "InputError", "RollcontactError",
-           "SceneError", "Grid", "contact_box", "influence_coefficients", "Material", "MaterialPair",
-           "HalfSpaceOperator"]
+Imports nothing else of rollcontact. Units: mm, N, MPa (influence coefficients in mm/MPa). The names below are
+imported on first use, so that `rollcontact.bem.errors` does not load numpy, pyfftw and numba.
+"""
+from importlib import import_module
+
+_WHERE = {"ConvergenceError": "errors", "ContactEdgeError": "errors", "GrossSlidingError": "errors",
+          "InputError": "errors", "RollcontactError": "errors", "SceneError": "errors", "Grid": "grid",
+          "contact_box": "grid", "influence_coefficients": "influence", "Material": "materials",
+          "MaterialPair": "materials", "HalfSpaceOperator": "operator"}
+__all__ = list(_WHERE)
+
+
+def __getattr__(name):
+    if name in _WHERE:
+        return getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_WHERE))

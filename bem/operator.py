@@ -12,10 +12,8 @@ Fields are arrays of shape (ny, nx): pressure p and tractions tau_x, tau_y in MP
 import math
 
 import numpy as np
-import pyfftw
-from scipy.fft import next_fast_len
-
 from rollcontact.bem import _spectral, wisdom as _wisdom
+from rollcontact.bem._fftw import pyfftw
 from rollcontact.bem.errors import InputError
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.influence import influence_coefficients
@@ -34,16 +32,16 @@ COUPLING_THRESHOLD = 1e-4
 #: one from about 520^2 (normal Hertz at 768^2 / 1024^2: 15 / 18 -> 13 / 13 iterations).
 PRECONDITIONER_FLOOR = 0.05
 
-def fft_length(n: int) -> int:
-    """Smallest even 5-smooth integer >= n: the FFT length used for a dimension needing n points.
+def smooth_length(n: int, even: bool = False) -> int:
+    """Smallest 5-smooth integer >= n (only prime factors 2, 3, 5), and even if asked: a fast FFT length.
 
-    scipy's next_fast_len may return an odd length (125, 135, 225), and FFTW's real transforms of odd
-    length are 1.3-4x slower than those of the next even 5-smooth one (measured on the benchmark
-    machine: one padded convolution pair on 125^2 0.13 ms, on 128^2 0.05 ms; benchmarks/README.md).
+    Without `even` it equals scipy.fft.next_fast_len(n, real=True) (checked for n < 20000 in tests/bem), which
+    the preconditioner's circulant periods were measured with; it is computed here so that a run does not import
+    scipy.fft (0.2 s at start-up).
     """
-    m = max(2, int(n))
+    m = max(2 if even else 1, int(n))
     while True:
-        if m % 2 == 0:
+        if not even or m % 2 == 0:
             k = m
             for f in (2, 3, 5):
                 while k % f == 0:
@@ -51,6 +49,16 @@ def fft_length(n: int) -> int:
             if k == 1:
                 return m
         m += 1
+
+
+def fft_length(n: int) -> int:
+    """Smallest even 5-smooth integer >= n: the FFT length used for a dimension needing n points.
+
+    An odd 5-smooth length (125, 135, 225) is avoided: FFTW's real transforms of odd length are 1.3-4x slower
+    than those of the next even 5-smooth one (measured on the benchmark machine: one padded convolution pair on
+    125^2 0.13 ms, on 128^2 0.05 ms).
+    """
+    return smooth_length(n, even=True)
 
 
 def _fft_pairs(ks, shape, threads, planner):
@@ -156,7 +164,7 @@ class HalfSpaceOperator:
         whose kernel is the influence coefficient at the nearest periodic offset (Strang's choice); the
         circulant is inverted exactly in Fourier space. Working on the unpadded grid costs a quarter of
         a padded convolution, so a preconditioned CG iteration costs about 1.25 convolution pairs
-        (theory.md §4.3, §5.4). Its period is scipy's next_fast_len of the grid (an odd length is kept here:
+        (theory.md §4.3, §5.4). Its period is the 5-smooth length of the grid (smooth_length) (an odd length is kept here:
         the circulant's period changes the preconditioner, and the near-bound tangential solves were measured
         with these periods). The zz, xx, yy kernels are even and xy is odd in X and in Y, so all four
         symbols are real. The symbol's eigenvalues are floored at PRECONDITIONER_FLOOR times the self
@@ -164,7 +172,7 @@ class HalfSpaceOperator:
         """
         g, m = self.grid, self.materials
         ny, nx = g.shape
-        sy, sx = next_fast_len(ny, real=True), next_fast_len(nx, real=True)
+        sy, sx = smooth_length(ny), smooth_length(nx)
         self.small = (sy, sx)
         ox = np.arange(sx) - sx * (np.arange(sx) > sx // 2)
         oy = np.arange(sy) - sy * (np.arange(sy) > sy // 2)

@@ -9,7 +9,6 @@ import pickle
 import threading
 from pathlib import Path
 
-import pyfftw
 
 #: serialises planning and the wisdom file's import and export within a process
 lock = threading.Lock()
@@ -30,6 +29,7 @@ def load():
     _loaded.add(path)
     try:
         with open(path, "rb") as fh:
+            from rollcontact.bem._fftw import pyfftw
             pyfftw.import_wisdom(pickle.load(fh))
     except (OSError, pickle.UnpicklingError, EOFError, TypeError, ValueError):
         pass
@@ -44,6 +44,7 @@ def _save():
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         with open(tmp, "wb") as fh:
+            from rollcontact.bem._fftw import pyfftw
             pickle.dump(pyfftw.export_wisdom(), fh)
         os.replace(tmp, path)
     except OSError:

@@ -13,20 +13,20 @@ Subpackages, in the order data flows: `rollcontact.cases` (scenes, runs, results
 `rollcontact.bem` (half-space: materials, grid, influence coefficients, FFT operator) -> `rollcontact.solver`
 (normal and tangential solvers, rolling, MDR model).
 """
-from importlib import metadata as _metadata
-
-try:
-    __version__ = _metadata.version("rollcontact")
-except _metadata.PackageNotFoundError:  # pragma: no cover - running from a source tree that is not installed
-    __version__ = "unknown"
-
 _API = ("load_scene", "run", "read_run", "sweep", "limit_search", "RunResult", "Scene", "RollcontactError",
         "InputError", "SceneError", "ConvergenceError", "RunInterrupted")
 __all__ = ["__version__", *_API]
 
 
 def __getattr__(name):
-    """The API is imported on first use, so that `import rollcontact` (and `rollcontact --version`) stays fast."""
+    """The API (and __version__, from the package metadata) is looked up on first use, so that `import rollcontact`
+    and `rollcontact --help` stay fast."""
+    if name == "__version__":
+        from importlib import metadata
+        try:
+            return metadata.version("rollcontact")
+        except metadata.PackageNotFoundError:  # pragma: no cover - a source tree that is not installed
+            return "unknown"
     if name in _API:
         from rollcontact.cases import api
         return getattr(api, name)

@@ -18,15 +18,15 @@ import argparse
 import sys
 
 from rollcontact.bem.errors import InputError
-from rollcontact.solver.mdr import limits as lim
 
 TABLE_FRACTIONS = (0.0, 0.25, 0.5, 0.75, 0.9, 1.0)   # table rows: fractions of the largest f_t,lim shown
 
 
 def _kappas(args):
+    from rollcontact.solver.mdr import limits as lim
     """[(label, kappa)] to report, from --kappa, --angle, or the three reference values."""
     if args.kappa is not None:
-        lim._check_kappa(args.kappa)
+        lim.check_kappa(args.kappa)
         return [("given", float(args.kappa))]
     if args.angle is not None:
         return [(f"angle={args.angle:g}deg", lim.kappa_for_angle(args.angle))]
@@ -45,6 +45,7 @@ def _setting(args):
 
 def handler(args, out=None) -> int:
     """Print the limits; 0 on success, 2 on a bad parameter (message on stderr)."""
+    from rollcontact.solver.mdr import limits as lim
     out = out or sys.stdout
     if args.w is None and args.ft is None:
         print("rollcontact limits: error: give --w (amplitude W/a) and/or --ft (load ratio Ft/(mu Fn))",
@@ -53,9 +54,9 @@ def handler(args, out=None) -> int:
     try:
         kappas = _kappas(args)
         if args.w is not None:
-            lim._check_w(args.w)
+            lim.check_w(args.w)
         if args.ft is not None:
-            lim._check_ft(args.ft)
+            lim.check_ft(args.ft)
         print("kappa (seed Eq. 13): " + ", ".join(f"{label} {k:g}" for label, k in kappas), file=out)
         if args.w is not None:
             w = float(args.w)

@@ -15,7 +15,6 @@ import argparse
 from pathlib import Path
 import sys
 
-from rollcontact.cases.plots.common import PlotError, open_run
 
 
 def _default_dir(target: Path) -> Path:
@@ -32,6 +31,7 @@ def _report(paths, notes) -> int:
 
 def plot_handler(args) -> int:
     """`rollcontact plot TARGET`: one run file or a sweep folder."""
+    from rollcontact.cases.plots.common import PlotError, open_run
     from rollcontact.cases.plots.run_figures import plot_run
     from rollcontact.cases.plots.sweep_figures import plot_folder
     notes = []
@@ -52,6 +52,7 @@ def plot_handler(args) -> int:
 
 def compare_handler(args) -> int:
     """`rollcontact compare A B`."""
+    from rollcontact.cases.plots.common import PlotError, open_run
     from rollcontact.cases.plots.run_figures import compare_runs
     notes = []
     try:

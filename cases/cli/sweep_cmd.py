@@ -14,8 +14,6 @@ from __future__ import annotations
 import argparse
 import sys
 
-from rollcontact.cases.scene.scene import Scene, default_scene
-from rollcontact.cases.sweep.workers import sigterm_as_interrupt
 
 
 def _common(p):
@@ -52,20 +50,17 @@ def register(subparsers):
     return p
 
 
-def _scene(args) -> Scene:
-    return Scene.from_toml(args.scene) if args.scene else default_scene()
-
-
 def sweep_handler(args) -> int:
-    from rollcontact.cases.sweep.runner import run_sweep
+    from rollcontact.cases import api
+    from rollcontact.cases.sweep.workers import sigterm_as_interrupt
     if not args.vary:
         print("rollcontact sweep: error: give at least one --vary section.key=VALUES, "
               "e.g. --vary load.ft=0.1:0.9:9", file=sys.stderr)
         return 2
     sigterm_as_interrupt()
     try:
-        report = run_sweep(_scene(args), args.vary, args.output, overrides=args.overrides, jobs=args.jobs,
-                           scheduler=args.scheduler, progress=None if args.quiet else sys.stderr)
+        report = api.sweep(api.load_scene(args.scene), args.vary, args.output, overrides=args.overrides,
+                           jobs=args.jobs, scheduler=args.scheduler, progress=not args.quiet)
     except KeyboardInterrupt:
         return 130
     print(f"{report.planned} run(s): {report.ran} run now, {report.skipped} skipped (already complete), "
@@ -74,16 +69,16 @@ def sweep_handler(args) -> int:
 
 
 def limit_handler(args) -> int:
-    from rollcontact.cases.sweep.limit_search import search_limits
+    from rollcontact.cases import api
+    from rollcontact.cases.sweep.workers import sigterm_as_interrupt
     if not args.vary:
         print("rollcontact limit-search: error: give --vary motion.w=... (or --vary load.ft=...)",
               file=sys.stderr)
         return 2
     sigterm_as_interrupt()
     try:
-        report = search_limits(_scene(args), args.vary, args.output, overrides=args.overrides, tol=args.tol,
-                               jobs=args.jobs, scheduler=args.scheduler,
-                               progress=None if args.quiet else sys.stderr)
+        report = api.limit_search(api.load_scene(args.scene), args.vary, args.output, overrides=args.overrides,
+                                  tol=args.tol, jobs=args.jobs, scheduler=args.scheduler, progress=not args.quiet)
     except KeyboardInterrupt:
         return 130
     name = "f_t,lim" if report.searched == "load.ft" else "w_lim"

@@ -89,11 +89,11 @@ class Output:
 
 SECTIONS = {"materials": Materials, "geometry": Geometry, "load": Load, "motion": Motion,
             "grid": GridSpec, "solver": SolverSpec, "output": Output}
-_ATTR = {"materials": "materials", "geometry": "geometry", "load": "load", "motion": "motion",
+SECTION_ATTR = {"materials": "materials", "geometry": "geometry", "load": "load", "motion": "motion",
          "grid": "grid", "solver": "solver", "output": "output"}
 
 
-def _check(sec, f, value):
+def check_key(sec, f, value):
     """Validate one key against its field spec; return the (possibly converted) value."""
     meta, key = f.metadata, f"[{sec}] {f.name}"
     unit = f" {meta['unit']}" if meta.get("unit") else ""

@@ -33,7 +33,7 @@ from importlib import resources
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.keys import (
-    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, _ATTR, _check)
+    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, SECTION_ATTR, check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
@@ -83,7 +83,7 @@ class Scene(SceneLimits):
             unknown = set(values) - set(names)
             if unknown:
                 raise SceneError(f"[{sec}] unknown key(s) {sorted(unknown)}; allowed: {sorted(names)}")
-            kwargs = {k: _check(sec, names[k], v) for k, v in values.items()}
+            kwargs = {k: check_key(sec, names[k], v) for k, v in values.items()}
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
         scene._check_consistency()
@@ -113,7 +113,7 @@ class Scene(SceneLimits):
     def to_dict(self, include_none: bool = False) -> dict:
         out = {}
         for sec in SECTIONS:
-            obj = getattr(self, _ATTR[sec])
+            obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
         return out

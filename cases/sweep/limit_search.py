@@ -18,10 +18,10 @@ from rollcontact.cases.scene.scene import Scene
 from rollcontact.cases.results.hdf5 import stored_summary
 from rollcontact.cases.sweep.runner import execute_run, is_done
 from rollcontact.cases.sweep.plan import (
-    _RANGE_DIGITS, PlannedRun, _describe, build_scene, parse_vary, plan_sweep, run_file_name)
+    RANGE_DIGITS, PlannedRun, describe, build_scene, parse_vary, plan_sweep, run_file_name)
 from rollcontact.cases.sweep.table import write_summary
 from rollcontact.cases.results.outputs import output_folder
-from rollcontact.cases.sweep.workers import _make_pool, _raise_if_interrupted, completed, default_jobs, require_dask
+from rollcontact.cases.sweep.workers import make_pool, raise_if_interrupted, completed, default_jobs, require_dask
 
 
 LIMIT_KAPPAS = (1.0, 1.1, 1.5)
@@ -63,7 +63,7 @@ class _LimitSearch:
 
     def run(self, x, periods) -> str:
         values = dict(self.values)
-        values[self.searched] = float(f"{x:.{_RANGE_DIGITS}g}")
+        values[self.searched] = float(f"{x:.{RANGE_DIGITS}g}")
         extra = [] if periods == self.periods else [f"motion.periods={periods}"]
         name_values = dict(values, **({"motion.periods": periods} if extra else {}))
         scene = build_scene(self.base, self.overrides + extra, values)
@@ -76,11 +76,11 @@ class _LimitSearch:
         else:
             result = execute_run(toml, scene.name, str(run.path))
             if result["status"] != "complete":
-                raise RollcontactError(f"probe {_describe(name_values)} failed: {result['error']}")
+                raise RollcontactError(f"probe {describe(name_values)} failed: {result['error']}")
             summary = result["summary"]
         state = summary.get("state") or ""
         if self.log:
-            print(f"limit-search {_describe(self.values)}: {self.searched}={x:.6g} periods={periods} -> {state}",
+            print(f"limit-search {describe(self.values)}: {self.searched}={x:.6g} periods={periods} -> {state}",
                   file=sys.stderr, flush=True)
         return state
 
@@ -240,7 +240,7 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
     if progress is not None:
         print(f"limit-search: {len(plan)} combination(s), searching {searched} to tol = {tol:g}; probe runs in "
               f"{runs_dir}", file=progress, flush=True)
-    pool = _make_pool(min(jobs, len(plan)), scheduler)
+    pool = make_pool(min(jobs, len(plan)), scheduler)
     rows = {}
     try:
         tasks = [(run, _limit_task, (base.to_toml(), base.name, list(overrides), run.values, searched, float(tol),
@@ -254,10 +254,10 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
             if progress is not None:
                 what = (f"{row['searched']} in [{row['lower']:.4f}, {row['upper']:.4f}] ({row['status']})"
                         if row["status"] != "failed" else f"FAILED ({row['error']})")
-                print(f"limit-search [{len(rows)}/{len(plan)}] {_describe(run.values)}: {what}",
+                print(f"limit-search [{len(rows)}/{len(plan)}] {describe(run.values)}: {what}",
                       file=progress, flush=True)
         pool.close()
-        _raise_if_interrupted()
+        raise_if_interrupted()
     except KeyboardInterrupt:
         pool.stop()
         write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)

@@ -24,7 +24,7 @@ from rollcontact.bem.errors import SceneError
 
 from rollcontact.cases.scene.scene import Scene
 
-_RANGE_DIGITS = 12          # range values are rounded to 12 significant digits (0.30000000000000004 -> 0.3)
+RANGE_DIGITS = 12          # range values are rounded to 12 significant digits (0.30000000000000004 -> 0.3)
 _HASH_CHARS = 8
 
 
@@ -76,7 +76,7 @@ def parse_vary(spec: str) -> Axis:
         if count == 1:
             values = (start,)
         else:
-            values = tuple(float(f"{v:.{_RANGE_DIGITS}g}") for v in np.linspace(start, stop, count))
+            values = tuple(float(f"{v:.{RANGE_DIGITS}g}") for v in np.linspace(start, stop, count))
         if len(set(values)) != len(values):
             raise SceneError(f"--vary {spec!r}: the range repeats values; use start != stop")
         return Axis(key, values)
@@ -198,7 +198,7 @@ def plan_sweep(base: Scene, axes, outdir, overrides=()) -> list[PlannedRun]:
         try:
             scene = build_scene(base, overrides, values)
         except SceneError as exc:
-            bad.append(f"  {_describe(values)}: {exc}")
+            bad.append(f"  {describe(values)}: {exc}")
             continue
         toml = scene.to_toml()
         runs.append(PlannedRun(index, values, toml, outdir / run_file_name(values, toml), scene.name))
@@ -211,6 +211,6 @@ def plan_sweep(base: Scene, axes, outdir, overrides=()) -> list[PlannedRun]:
     return runs
 
 
-def _describe(values: dict) -> str:
+def describe(values: dict) -> str:
     return " ".join(f"{k}={_format_value(v)}" for k, v in values.items()) or "(base scene)"
 

@@ -48,9 +48,9 @@ from rollcontact.bem.errors import InputError, RollcontactError
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary
 from rollcontact.cases.results.outputs import output_folder
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.cases.sweep.plan import PlannedRun, _describe, parse_vary, plan_sweep
+from rollcontact.cases.sweep.plan import PlannedRun, describe, parse_vary, plan_sweep
 from rollcontact.cases.sweep.table import write_summary
-from rollcontact.cases.sweep.workers import _make_pool, _raise_if_interrupted, completed, default_jobs, require_dask
+from rollcontact.cases.sweep.workers import make_pool, raise_if_interrupted, completed, default_jobs, require_dask
 
 
 # ---------------------------------------------------------------------------------------- one run
@@ -130,7 +130,7 @@ class _Progress:
         if row["status"] != "complete":
             what = f"FAILED ({row['error'][:120]})"
         print(f"[{self.done}/{self.total}] {self.failed} failed, elapsed {_hms(elapsed)}, ETA {_hms(eta)}  "
-              f"{_describe({k: row[k] for k in row if '.' in k})}: {what}", file=self.stream, flush=True)
+              f"{describe({k: row[k] for k in row if '.' in k})}: {what}", file=self.stream, flush=True)
 
 
 def _hms(seconds):
@@ -204,7 +204,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
                   file=progress, flush=True)
     report = SweepReport(outdir, keys, len(plan), skipped, 0, 0)
     bar = _Progress(len(plan), skipped, progress)
-    pool = _make_pool(jobs, scheduler) if todo else None
+    pool = make_pool(jobs, scheduler) if todo else None
     try:
         if todo:
             tasks = [(run, execute_run, (run.scene_toml, run.scene_name, str(run.path))) for run in todo]
@@ -218,7 +218,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
                 bar.update(row)
                 write_summary(outdir, keys, rows.values(), attrs=attrs)
             pool.close()
-        _raise_if_interrupted()
+        raise_if_interrupted()
     except KeyboardInterrupt:
         report.interrupted = True
         if pool is not None:

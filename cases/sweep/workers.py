@@ -41,11 +41,11 @@ def _worker_init(sweep_pid: int):
 #: by a signal handler while Python runs a weakref callback or a finaliser is only printed ("Exception ignored
 #: in ...") and the sweep went on to finish with exit code 0 (the kill-and-resume test failed 2 times in 12 on a
 #: loaded machine); the loops of the sweep and the limit search, and `_LocalPool.as_completed`, raise it again at
-#: their next check (`_raise_if_interrupted`).
+#: their next check (`raise_if_interrupted`).
 interrupt_requested = threading.Event()
 
 
-def _raise_if_interrupted():
+def raise_if_interrupted():
     if interrupt_requested.is_set():
         raise KeyboardInterrupt
 
@@ -72,7 +72,7 @@ class _LocalPool:
         pending = set(futures)
         while pending:
             done, pending = wait(pending, timeout=0.5, return_when=FIRST_COMPLETED)
-            _raise_if_interrupted()
+            raise_if_interrupted()
             yield from done
 
     def stop(self):
@@ -150,7 +150,7 @@ def require_dask(address=None):
     return distributed
 
 
-def _make_pool(jobs, scheduler):
+def make_pool(jobs, scheduler):
     if scheduler:
         return _DaskPool(scheduler)
     if jobs == 1:
@@ -177,7 +177,7 @@ def completed(pool, tasks):
         except Exception as exc:
             result, failure = None, f"{type(exc).__name__}: {exc}"
         yield futures[f], result, failure
-        _raise_if_interrupted()
+        raise_if_interrupted()
 
 
 def default_jobs() -> int:

@@ -5,9 +5,17 @@
     bisection   the model's shakedown limit by bisection in f_t
     limits      the closed forms of the shakedown theory (seed Eqs. 4-5, 12-21)
 
-Units: mm, N, MPa; f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9).
+Units: mm, N, MPa; f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9). The names below are imported on first use,
+so that the closed forms (`limits`) do not load the compiled simulator.
 """
-from rollcontact.solver.mdr.bisection import LimitBracket, shakedown_limit_ft
-from rollcontact.solver.mdr.simulate import MDRResult, simulate_mdr
+from importlib import import_module
 
-__all__ = ["LimitBracket", "shakedown_limit_ft", "MDRResult", "simulate_mdr"]
+_WHERE = {"LimitBracket": "bisection", "shakedown_limit_ft": "bisection", "MDRResult": "simulate",
+          "simulate_mdr": "simulate"}
+__all__ = list(_WHERE)
+
+
+def __getattr__(name):
+    if name in _WHERE:
+        return getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -63,11 +63,11 @@ def _check_range(name, value, lo, hi, what):
     return arr
 
 
-def _check_ft(f_t):
+def check_ft(f_t):
     return _check_range("f_t", f_t, 0.0, 1.0, "f_t = Ft/(mu Fn) is the tangential load ratio")
 
 
-def _check_w(w):
+def check_w(w):
     return _check_range("w", w, 0.0, 1.0, "w = W/a is the oscillation amplitude over the contact radius")
 
 
@@ -75,7 +75,7 @@ def _check_u(u, name="u_sd"):
     return _check_range(name, u, 0.0, 1.0, f"{name} = U/U0 is the rigid displacement over the full-slip shift")
 
 
-def _check_kappa(kappa):
+def check_kappa(kappa):
     k = float(kappa)
     if not (math.isfinite(k) and 0.0 < k <= KAPPA_MAX):
         raise InputError(
@@ -92,20 +92,20 @@ def _out(arr):
 # ------------------------------------------------------------------------------------ static (Mindlin)
 def u_stat(f_t):
     """Static shift u_stat = U_stat/U0 = 1 - (1 - f_t)^(2/3) (seed Eq. 4, Cattaneo-Mindlin; theory §7.2)."""
-    f = _check_ft(f_t)
+    f = check_ft(f_t)
     return _out(1.0 - (1.0 - f) ** (2.0 / 3.0))
 
 
 def stick_ratio_static(f_t):
     """Static stick radius over contact radius c/a = (1 - f_t)^(1/3) (seed Eq. 5)."""
-    f = _check_ft(f_t)
+    f = check_ft(f_t)
     return _out((1.0 - f) ** (1.0 / 3.0))
 
 
 # ------------------------------------------------------------------------------ shakedown equilibrium
 def u_lim(w):
     """Largest shakedown displacement u_lim = 1 - w^2 (seed Eq. 17): the stick band c_sd has vanished."""
-    ww = _check_w(w)
+    ww = check_w(w)
     return _out(1.0 - ww ** 2)
 
 
@@ -115,7 +115,7 @@ def f_t_equilibrium(u_sd, w, kappa=KAPPA_MDR):
     f_t = 1 - kappa w u_sd - (1 - u_sd)^(3/2), valid while the stick band exists: sqrt(1 - u_sd) >= w,
     i.e. u_sd <= u_lim(w) = 1 - w^2.  Beyond that the relation has no meaning and InputError is raised.
     """
-    u, ww, k = _check_u(u_sd), _check_w(w), _check_kappa(kappa)
+    u, ww, k = _check_u(u_sd), check_w(w), check_kappa(kappa)
     if np.any(u > 1.0 - ww ** 2 + 1e-15):
         raise InputError(f"u_sd = {u_sd!r} > u_lim = 1 - w^2 for w = {w!r}: no stick band left, "
                          f"seed Eq. 13 applies only for u_sd <= 1 - w^2")
@@ -128,7 +128,7 @@ def f_t_lim(w, kappa=KAPPA_MDR):
     Equals f_t_equilibrium(u_lim(w), w, kappa).  kappa = 1: 1 - w (Eq. 18); kappa = 1.1: 1 - 1.1 w + 0.1 w^3
     (Eq. 19); kappa = 3/2: pure MDR (theory §8.3).  Monotonically decreasing from 1 (w = 0) to 0 (w = 1).
     """
-    ww, k = _check_w(w), _check_kappa(kappa)
+    ww, k = check_w(w), check_kappa(kappa)
     return _out(1.0 - k * ww + (k - 1.0) * ww ** 3)
 
 
@@ -138,7 +138,7 @@ def w_lim(f_t, kappa=KAPPA_MDR):
     f_t,lim(w) is strictly decreasing on [0, 1] for 0 < kappa <= 3/2, so the root is unique (Brent, to
     ~1e-15).  f_t = 1 gives 0, f_t = 0 gives 1.
     """
-    f, k = float(_check_ft(f_t)), _check_kappa(kappa)
+    f, k = float(check_ft(f_t)), check_kappa(kappa)
     if f >= 1.0:
         return 0.0
     if f <= 0.0:
@@ -155,7 +155,7 @@ def u_shakedown(f_t, w, kappa=KAPPA_MDR):
     in [0, u_lim] is unique.  w = 0 gives the static Mindlin value u_stat(f_t).
     Raises NoShakedownError (an InputError) naming f_t, w, kappa if f_t > f_t,lim(w): ratcheting, no u_sd.
     """
-    f, ww, k = float(_check_ft(f_t)), float(_check_w(w)), _check_kappa(kappa)
+    f, ww, k = float(check_ft(f_t)), float(check_w(w)), check_kappa(kappa)
     limit = f_t_lim(ww, k)
     if f > limit * (1.0 + 1e-14) + 1e-15:
         raise NoShakedownError(
@@ -209,8 +209,8 @@ def fit_kappa(f_t, w, u_sd) -> KappaFit:
     carry no information on kappa; at least one informative point is required.  The result is not
     range-checked against 0 < kappa <= 3/2 (a fit may land outside).
     """
-    f = np.atleast_1d(_check_ft(f_t)).astype(float)
-    ww = np.atleast_1d(_check_w(w)).astype(float)
+    f = np.atleast_1d(check_ft(f_t)).astype(float)
+    ww = np.atleast_1d(check_w(w)).astype(float)
     u = np.atleast_1d(_check_u(u_sd)).astype(float)
     try:
         f, ww, u = np.broadcast_arrays(f, ww, u)
@@ -240,7 +240,7 @@ def ratcheting_increment(f_t, w, setting="perpendicular"):
     """
     if setting not in RATCHET_C:
         raise InputError(f"setting = {setting!r}: allowed values are {sorted(RATCHET_C)}")
-    f, ww = float(_check_ft(f_t)), float(_check_w(w))
+    f, ww = float(check_ft(f_t)), float(check_w(w))
     wl = w_lim(f, SETTING_KAPPA[setting])
     if ww <= wl:
         return 0.0

@@ -28,8 +28,7 @@ outlined in theory.md §4.3:
 
 Cost per iteration: one `op.normal` (A v, a padded forward + inverse FFT) and one `op.normal_inverse`
 (about a fifth of that), plus three compiled element loops (`_direction`, `_step`, `_residual_and_entries`
-in `solver/_normal_kernels.py`; 1.31-1.35 convolution pairs per iteration at 512^2,
-benchmarks/normal_breakdown.py). The displacement u = A p is not recomputed by FFT: it is updated as
+in `solver/normal/_kernels.py`; 1.3-1.5 convolution pairs per iteration at 512^2, benchmarks/normal_hertz.py). The displacement u = A p is not recomputed by FFT: it is updated as
 u += alpha A v, and the elements truncated to p = 0 are corrected exactly, either by adding their influence
 columns (few elements, numba `_add_columns`) or, when many elements are truncated at once, by one extra
 `op.normal(p)`. Work arrays are allocated once per call.

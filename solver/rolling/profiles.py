@@ -8,7 +8,6 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.interpolate import RegularGridInterpolator
 
 from rollcontact.bem.errors import InputError
 
@@ -53,6 +52,7 @@ class ArrayProfile:
             raise InputError(f"array profile: h must be finite with shape (len(y), len(x)) = "
                              f"({len(y)}, {len(x)}), got {h.shape}")
         method = "cubic" if min(h.shape) >= 4 else "linear"
+        from scipy.interpolate import RegularGridInterpolator  # 0.5 s to import: only for sampled profiles
         self._interp = RegularGridInterpolator((np.asarray(y, float), np.asarray(x, float)), h,
                                                method=method, bounds_error=False, fill_value=None)
 

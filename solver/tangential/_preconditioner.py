@@ -21,7 +21,7 @@ with Pi the deflation of the force constraint (prescribed force only). Two forms
   over BLEND. The two-term form weights the smooth residuals of slip elements with kappa ~ a_tt by
   D ~ 1/(4 a_tt), far above the inverse symbol of A: on wide slip rings these modes were badly conditioned.
   Measured on the Cattaneo scene when the level was introduced (2026-11-23, before the lagged projected steps of
-  `solver.tangential._tangcg`, which lowered every count; benchmarks/tangential_cattaneo.py, benchmarks/README.md): warm
+  `solver.tangential._tangcg`, which lowered every count; benchmarks/tangential_cattaneo.py): warm
   steps after a load / profile change 17 / 21, 22 / 26, 28 / 37 products at 109^2 / 217^2 / 511^2 (two-term form:
   22 / 27, 31 / 40, 59 / 83), cold 26 / 34 / 38 (27 / 37 / 54), for one more circulant (a quarter of a product) per
   iteration; on 109^2 that did not pay in time, so the level is used from 217^2 on (MIN_CONTACT_ELEMENTS, where
@@ -46,7 +46,7 @@ LEVELS = (0.0, 4.0)
 BLEND = 1.4
 #: the shifted levels (l >= 1) are used only on contacts of at least this many elements (a/dx ~ 70). Each level
 #: costs about a quarter of a product per iteration; measured single-thread time, shifted / two-term form
-#: (benchmarks/README.md): Cattaneo 217^2 (28849 contact elements) cold 1.07, warm load 0.81, profile 0.72, and
+#: (2026-11-23, benchmarks/tangential_cattaneo.py): Cattaneo 217^2 (28849 contact elements) cold 1.07, warm load 0.81, profile 0.72, and
 #: 511^2 about 0.7 / 0.5 / 0.5; but 109^2 (7221) cold 1.20, warm 0.93-0.96, and a coupled step at a/dx = 40
 #: (about 5000) 1.09-1.17, with 5-25 % fewer products; on 55^2 (1801) no fewer products at all.
 MIN_CONTACT_ELEMENTS = 16000

@@ -100,7 +100,7 @@ would need to remove its own error: a_self in stick, a_tt + kappa for turning a 
 the kappa weight, elements at the contact edge with g ~ 1e-4 max g and a direction error of 1e-9 rad held
 the test for 20 of 86 products at 511^2, where tol 1e-9 was out of reach; measured against a reference at
 tol 1e-11 the traction error was 0.09-0.57 tol max g for tol 1e-4 ... 1e-8 on the Cattaneo grids, and up to
-0.87 tol max g in the later benchmarks/tangential_tolerance.py (tol 1e-5 ... 1e-8, 55^2 ... 511^2);
+0.87 tol max g for tol 1e-5 ... 1e-8 on 55^2 ... 511^2 (a probe of 2026-11-24, in git history);
 `tests/solver/test_tangential_contract.py` checks < 3 tol max g.)
 |tau| <= g holds to round-off by construction at every iterate, and the force balance in every returned
 result (it is restored before the final exact re-synchronisation).
@@ -131,7 +131,7 @@ class TangentialParams:
         the slip error of every element, expressed as the traction (relative to the largest bound) that the
         element's own stiffness would need to remove it. 1e-8 gives shifts and tractions to about
         8 digits of the discrete solution (traction error 1.7e-9 - 8.7e-9 max g on the Cattaneo grids,
-        benchmarks/tangential_tolerance.py).
+        measured against tol 1e-11).
     max_iter: budget of `op.tangential` products per solve (ConvergenceError beyond it).
     """
 

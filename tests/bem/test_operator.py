@@ -190,3 +190,12 @@ def test_preconditioners_invert_the_circulant_exactly_on_a_large_grid():
     assert rel(op.normal_inverse(conv(p, "zz")), p) < 1e-9
     z = op.tangential_inverse(conv(tx, "xx") + conv(ty, "xy"), conv(tx, "xy") + conv(ty, "yy"))
     assert rel(z, np.array([tx, ty])) < 1e-9
+
+
+def test_smooth_length_is_scipys_next_fast_len_for_real_transforms():
+    # the preconditioner's circulant periods were measured with scipy.fft.next_fast_len(n, real=True); the
+    # operator computes the same 5-smooth lengths itself so that a run does not import scipy.fft
+    from rollcontact.bem.operator import fft_length, smooth_length
+    n = np.arange(1, 20000)
+    assert [smooth_length(int(k)) for k in n] == [next_fast_len(int(k), real=True) for k in n]
+    assert all(fft_length(int(k)) % 2 == 0 and fft_length(int(k)) >= k for k in n[:3000])
