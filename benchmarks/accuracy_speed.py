@@ -44,7 +44,7 @@ import numpy as np
 from accuracy_speed_chart import chart, pareto
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.bem.errors import RollcontactError
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 from peers import contactmechanics_solver, tamaas_solver
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
@@ -184,7 +184,7 @@ def run_usd(angle, dx, dW, tol, repeats):
         for _ in range(max(1, repeats)):
             out = run_scene(scene, Path(tmp) / "run.h5")
             times.append(out.wall_time)
-    d = out.data
+    d = out
     s, h = d.summary, d.history
     row = dict(angle=angle, dx=dx, dW=dW, dW_used=s.get("dW_used"), tol=tol, a_over_dx=s["a"] / dx,
                elements=s.get("elements"), steps=s.get("steps"), iterations=s.get("iterations"),

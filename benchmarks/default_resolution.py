@@ -14,7 +14,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 
 HERE = Path(__file__).parent
@@ -35,7 +35,7 @@ def main():
                 f"load.ft={r['load.ft']}", f"motion.w={r['motion.w']}", f"motion.angle={r['motion.angle']}",
                 f"grid.dx={dx}", f"motion.dW={dW}", f"solver.tol={tol}"])
             t = time.perf_counter()
-            summary = run_scene(scene, tmp / "run.h5").data.summary
+            summary = run_scene(scene, tmp / "run.h5").summary
             wall += time.perf_counter() - t
             dev = summary["u_sd"] / r["u_sd"] - 1 if summary["state"] == "shakedown" else None
             rows.append({"ft": r["load.ft"], "w": r["motion.w"], "angle": r["motion.angle"],

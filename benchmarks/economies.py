@@ -8,8 +8,9 @@
    region in both directions ([-a - W - m, a + W + m]^2); the padded FFT size (what a product costs) too.
 2. No coupling work when beta = 0: the paper scene (beta = 0, the substrate is incompressible) run with
    coupling 'auto' (off) and forced 'on' (Panagiotopoulos loop, two extra kernel spectra): FFT products
-   counted by wrapping HalfSpaceOperator._apply (counts the padded convolutions; one product = one forward
-   + inverse of 1-3 fields), wall time, and the difference in u_sd (0 up to the tolerance).
+   counted by wrapping HalfSpaceOperator._apply and _apply_symbols (the padded convolutions, not the
+   preconditioners; one product = one forward + inverse of 1-3 fields), wall time, and the difference in u_sd
+   (0 up to the tolerance).
 3. Field snapshots only where asked: HDF5 file size of the default run with output.fields = 'none', 'last',
    'reversals' (default), 'all'.
 4. The MDR model when only limits are needed: `rollcontact limits --w 0.23 --ft 0.46` (a fresh process, so
@@ -33,7 +34,8 @@ from pathlib import Path
 import numpy as np
 
 from rollcontact.bem.operator import HalfSpaceOperator, fft_length
-from rollcontact.cases.run.bem_run import run_scene, scene_grid, scene_path
+from rollcontact.cases.run.discretise import scene_grid, scene_path
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 from rollcontact.solver.mdr import limits as lim
 from rollcontact.solver.mdr.simulate import simulate_mdr
@@ -74,22 +76,32 @@ def grid_economy():
 
 
 class ProductCounter:
-    """Counts HalfSpaceOperator._apply calls (padded convolutions) while active."""
+    """Counts the padded convolutions while active: HalfSpaceOperator._apply (coupling blocks) and the
+    _apply_symbols calls on the padded transforms (op.normal, op.tangential; not the preconditioners)."""
 
     def __enter__(self):
         self.count, self.fields = 0, 0
         self._orig = HalfSpaceOperator._apply
+        self._orig_symbols = HalfSpaceOperator._apply_symbols
         counter = self
 
         def counted(op, fields, blocks, out, ffts=None):
             counter.count += 1
             counter.fields += len(fields)
             return counter._orig(op, fields, blocks, out, ffts)
+
+        def counted_symbols(op, fields, y, ffts, out):
+            if ffts is op._fft:
+                counter.count += 1
+                counter.fields += len(fields)
+            return counter._orig_symbols(op, fields, y, ffts, out)
         HalfSpaceOperator._apply = counted
+        HalfSpaceOperator._apply_symbols = counted_symbols
         return self
 
     def __exit__(self, *exc):
         HalfSpaceOperator._apply = self._orig
+        HalfSpaceOperator._apply_symbols = self._orig_symbols
 
 
 def coupling_economy(repeats):
@@ -103,11 +115,11 @@ def coupling_economy(repeats):
             times = [out.wall_time] + [run_scene(scene, Path(tmp) / "r.h5").wall_time for _ in range(repeats - 1)]
         op = HalfSpaceOperator(scene_grid(scene, scene_path(scene)), scene.material_pair,
                                coupling={"auto": "auto", "on": True}[coupling])
-        h = out.data.history
+        h = out.history
         rows.append(dict(coupling=coupling, beta=scene.material_pair.beta, coupled=op.coupled,
                          spectra=sorted(op.spectra), products=pc.count, fields_convolved=pc.fields,
                          outer_iterations=int(np.sum(h["outer_iterations"])), time_s=statistics.median(times),
-                         u_sd=out.data.summary.get("u_sd"), iterations=out.data.summary.get("iterations")))
+                         u_sd=out.summary.get("u_sd"), iterations=out.summary.get("iterations")))
         print(f"coupling {coupling}: {rows[-1]}", flush=True)
     return rows
 
@@ -119,7 +131,7 @@ def snapshot_economy():
             scene = default_scene().with_overrides([f"output.fields={mode}"])
             path = Path(tmp) / f"{mode}.h5"
             out = run_scene(scene, path)
-            rows.append(dict(fields=mode, snapshots=len(out.data.field_steps), bytes=path.stat().st_size))
+            rows.append(dict(fields=mode, snapshots=len(out.field_steps), bytes=path.stat().st_size))
             print(f"fields={mode}: {rows[-1]}", flush=True)
     return rows
 
@@ -146,8 +158,8 @@ def mdr_economy(repeats):
         out_mdr = run_scene(mdr_scene, Path(tmp) / "m.h5")
         run_scene(scene, Path(tmp) / "w.h5")
         out3d, t3d = median_time(lambda: run_scene(scene, Path(tmp) / "b.h5"), repeats)
-    rows.update(run_scene_mdr_s=t_run_mdr, run_scene_3d_s=t3d, u_sd_mdr=out_mdr.data.summary.get("u_sd"),
-                u_sd_3d=out3d.data.summary.get("u_sd"),
+    rows.update(run_scene_mdr_s=t_run_mdr, run_scene_3d_s=t3d, u_sd_mdr=out_mdr.summary.get("u_sd"),
+                u_sd_3d=out3d.summary.get("u_sd"),
                 u_sd_eq13_kappa_perp=float(lim.u_shakedown(0.46, 0.23, lim.KAPPA_PERPENDICULAR)),
                 speedup_mdr_vs_3d=t3d / t_run_mdr, speedup_cli_vs_3d=t3d / t_cli)
     print(f"mdr: {rows}", flush=True)

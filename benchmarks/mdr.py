@@ -12,6 +12,7 @@ Writes benchmarks/results/mdr.json and prints the Markdown tables of benchmarks/
 """
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import platform
@@ -106,6 +107,7 @@ def fmt(x, spec=".6f"):
 
 
 def main():
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no stray options
     res = dict(machine=dict(python=platform.python_version(), processor=platform.processor() or platform.machine(),
                             numpy=np.__version__),
                scene=dict(SCENE, a=A), timing=timing(), closed_forms=closed_forms(),

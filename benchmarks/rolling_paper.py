@@ -29,7 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rollcontact.cases.run.bem_run import run_scene, scene_grid, scene_path
+from rollcontact.cases.run.discretise import scene_grid, scene_path
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 from rollcontact.bem.operator import HalfSpaceOperator
 
@@ -77,7 +78,7 @@ class Case:
         _, tn1, tt1 = product_times(self.scene)
         self.t_n.append(0.5 * (tn0 + tn1))
         self.t_t.append(0.5 * (tt0 + tt1))
-        self.data = out.data
+        self.data = out
         h = self.data.history
         self.ratios.append(self.walls[-1] / (np.sum(h["normal_iterations"]) * self.t_n[-1]
                                              + np.sum(h["tangential_iterations"]) * self.t_t[-1]))

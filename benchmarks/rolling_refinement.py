@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 
 
@@ -27,7 +27,7 @@ def measure(dx, ft, angle, periods):
                                             "output.fields=last"])
     with tempfile.TemporaryDirectory() as tmp:
         t = time.perf_counter()
-        data = run_scene(scene, Path(tmp) / "run.h5").data
+        data = run_scene(scene, Path(tmp) / "run.h5")
         wall = time.perf_counter() - t
     h = data.history
     rolling = np.asarray(h["period"]) >= 1

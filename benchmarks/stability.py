@@ -41,7 +41,7 @@ import numpy as np
 
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.bem.errors import ConvergenceError, GrossSlidingError, RollcontactError
-from rollcontact.cases.run.bem_run import run_scene
+from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 from rollcontact.solver.mdr import limits as lim
 from rollcontact.solver.analytic import CattaneoMindlin, HertzEllipse, HertzSphere
@@ -149,7 +149,7 @@ def rolling_case(group, label, overrides, kappa=None, periods=None):
         except Exception as exc:  # noqa: BLE001 - run_scene should not raise: a finding
             row.update(status=f"BUG {type(exc).__name__}", error=str(exc))
             return row
-    d, s, h = out.data, out.data.summary, out.data.history
+    d, s, h = out, out.summary, out.history
     row.update(time_s=out.wall_time, elements=s.get("elements"), steps=s.get("steps"),
                steps_planned=s.get("steps_planned"), state=s.get("state"), u_sd=s.get("u_sd"), du=s.get("du"),
                u_stat=s.get("u_stat"), iterations=int(np.max(h["iterations"])) if len(h["iterations"]) else None,
