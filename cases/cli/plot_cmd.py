@@ -11,10 +11,8 @@ Exit codes: 0 written, 2 bad input (missing file, not a run file, step not store
 """
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 import sys
-
 
 
 def _default_dir(target: Path) -> Path:
@@ -86,19 +84,3 @@ def register(subparsers):
     c.add_argument("-o", "--output", help="output folder (default: plots/ next to A)")
     c.set_defaults(func=compare_handler)
     return p, c
-
-
-def run_cli(argv=None) -> int:
-    """Standalone entry for tests: returns the exit code."""
-    parser = argparse.ArgumentParser(prog="rollcontact")
-    sub = parser.add_subparsers(dest="command", required=True)
-    register(sub)
-    try:
-        args = parser.parse_args(argv)
-    except SystemExit as exc:
-        return int(exc.code or 0)
-    return args.func(args)
-
-
-if __name__ == "__main__":
-    sys.exit(run_cli(sys.argv[1:]))

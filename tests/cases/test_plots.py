@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from rollcontact.cases.cli.main import build_parser
-from rollcontact.cases.cli.plot_cmd import run_cli
+from rollcontact.cases.cli.main import main as run_cli
 from rollcontact.cases.plots.common import DPI, FIGSIZE, open_run, seed_regions
 from rollcontact.cases.plots.sweep_figures import read_folder, read_limits
 from rollcontact.cases.run.scene_run import run_scene
