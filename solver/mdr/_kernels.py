@@ -43,8 +43,9 @@ def _rigid_shift_kernel(v, b, target, U_guess):
     """Numba root of sum clip(U - v_i, -b_i, b_i) = target (all b_i > 0); returns (U, status).
 
     status 0: solved; 1: |target| > sum b (gross sliding).  A few Newton steps from the previous U shrink a
-    bracket (usually they already land on the exact linear piece); the break points left inside the
-    bracket are then sorted and walked, which makes the result exact like `rigid_shift`.
+    bracket (usually they already land on the exact linear piece, `_newton_bracket`); the break points left
+    inside the bracket are then sorted and walked (`_walk_break_points`), which makes the result exact like
+    `rigid_shift`.
     """
     m = v.size
     cap = 0.0
@@ -60,13 +61,26 @@ def _rigid_shift_kernel(v, b, target, U_guess):
         return (xmin if m else U_guess), 0
     if target >= cap:
         return xmax, 0
-    lo, flo, hi = xmin, -cap, xmax
-    U = min(max(U_guess, xmin), xmax)
+    solved, U, lo, flo, hi = _newton_bracket(v, b, target, cap, min(max(U_guess, xmin), xmax), xmin, xmax)
+    if solved:
+        return U, 0
+    return _walk_break_points(v, b, target, lo, flo, hi), 0
+
+
+@njit(cache=True)
+def _newton_bracket(v, b, target, cap, U, lo, hi):
+    """At most six Newton steps on F(U) = sum clip(U - v_i, -b_i, b_i) = target from U inside the bracket
+    (lo, hi) = (min(v - b), max(v + b)), where F(lo) = -cap = -sum b; every iterate shrinks the bracket.
+
+    Returns (solved, U, lo, F(lo), hi): solved when F(U) = target to 1e-14 cap; otherwise the bracket for
+    `_walk_break_points`, left when a step would leave it or meets a flat piece.
+    """
+    flo = -cap
     for _ in range(6):
         F = 0.0
         k_right = 0
         k_left = 0
-        for i in range(m):
+        for i in range(v.size):
             x = U - v[i]
             if x >= b[i]:
                 F += b[i]
@@ -79,7 +93,7 @@ def _rigid_shift_kernel(v, b, target, U_guess):
             if -b[i] < x <= b[i]:
                 k_left += 1
         if abs(F - target) <= 1e-14 * cap:
-            return U, 0
+            return True, U, lo, flo, hi
         if F < target:
             if U > lo:
                 lo, flo = U, F
@@ -93,7 +107,14 @@ def _rigid_shift_kernel(v, b, target, U_guess):
         if not (lo < Un < hi):
             break
         U = Un
-    # exact walk over the break points inside (lo, hi), starting from F(lo) = flo < target
+    return False, U, lo, flo, hi
+
+
+@njit(cache=True)
+def _walk_break_points(v, b, target, lo, flo, hi):
+    """Exact root of F(U) = target in (lo, hi), F(lo) = flo < target: the break points v_i -+ b_i inside the
+    bracket are sorted and F, linear between them, is followed until it reaches the target."""
+    m = v.size
     xs = np.empty(2 * m)
     ks = np.empty(2 * m)
     n = 0
@@ -113,13 +134,13 @@ def _rigid_shift_kernel(v, b, target, U_guess):
         x = xs[order[j]]
         F_next = F + slope * (x - x_prev)
         if F_next >= target:
-            return x_prev + (target - F) / slope, 0
+            return x_prev + (target - F) / slope
         F = F_next
         slope += ks[order[j]]
         x_prev = x
     if slope > 0.0:
-        return min(x_prev + (target - F) / slope, hi), 0
-    return hi, 0
+        return min(x_prev + (target - F) / slope, hi)
+    return hi
 
 
 @njit(cache=True)

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -114,6 +115,18 @@ def _centre_path(W, dW, periods):
     return centre, period, dW_used, nq
 
 
+class _LoadPath(NamedTuple):
+    """Per step (loading steps first): the applied Ft (N), the centre c_n (mm) and the period index (0 during
+    loading); n_load loading steps, dW_used the centre step (mm), nq steps per quarter period."""
+
+    Ft: np.ndarray
+    centre: np.ndarray
+    period: np.ndarray
+    n_load: int
+    dW_used: float
+    nq: int
+
+
 def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1, n_springs=None,
                  ds=None, shakedown_tol=DEFAULT_TOL) -> MDRResult:
     """Run the 1-D MDR model of oscillating rolling (theory §8.2); see the module docstring.
@@ -126,6 +139,37 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
     default 4001, then ds = (a + W) / ((n_springs - 1)/2 - 1)).
     shakedown_tol: tolerance on the per-period increment |dU|/U0 passed to solver.rolling.shakedown.classify.
     """
+    R, E_star, G_star, Fn, mu, dW, periods, ramp_steps = _checked_inputs(R, E_star, G_star, Fn, mu, Ft, W, dW,
+                                                                         periods, ramp_steps)
+    hertz = HertzSphere(R, E_star, Fn)
+    a, d_hertz = hertz.a, hertz.approach
+    U0 = mu * E_star * d_hertz / G_star
+    if W >= a:
+        raise InputError(f"W = {W!r} mm >= a = {a:.6g} mm: the seed's model needs w = W/a < 1 (seed Eq. 10)")
+    s, ds = _springs(a + W, ds, n_springs)
+    path = _load_path(Ft, float(W), dW, periods, ramp_steps)
+    hist, done, failure = _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz)
+    history = {key: val[:done] for key, val in hist.items()}
+    history["step"] = np.arange(done)
+    history["period"] = path.period[:done]
+
+    n_load = path.n_load
+    ends = [n_load - 1 + k * 4 * path.nq for k in range(periods + 1)]
+    U_end = np.array([history["U"][i] for i in ends if i < done])
+    if failure is not None:
+        cls = gross_sliding(U_end, U0, failure)
+    else:
+        cls = classify(U_end, U0, tol=shakedown_tol)
+    U_stat = float(history["U"][n_load - 1]) if done >= n_load else math.nan
+    stick0 = float(history["stick_length"][n_load - 1]) if done >= n_load else math.nan
+    return MDRResult(history=history, U_period_end=U_end, U_stat=U_stat, U0=U0, a=a, d=d_hertz,
+                     dW_used=path.dW_used, ds=ds, n_springs=s.size, f_t=Ft / (mu * Fn), w=W / a,
+                     classification=cls, stick_length_static=stick0)
+
+
+def _checked_inputs(R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps):
+    """The scalar inputs of `simulate_mdr` checked (InputError naming the first bad one); returns R, E_star,
+    G_star, Fn, mu, dW as floats and periods, ramp_steps as ints."""
     R = _positive("R", R, "mm")
     E_star = _positive("E_star", E_star, "MPa")
     G_star = _positive("G_star", G_star, "MPa")
@@ -140,14 +184,12 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
         raise InputError(f"periods = {periods!r}: must be an integer >= 0")
     if not (int(ramp_steps) == ramp_steps and ramp_steps >= 1):
         raise InputError(f"ramp_steps = {ramp_steps!r}: must be an integer >= 1")
-    periods, ramp_steps = int(periods), int(ramp_steps)
+    return R, E_star, G_star, Fn, mu, dW, int(periods), int(ramp_steps)
 
-    hertz = HertzSphere(R, E_star, Fn)
-    a, d_hertz = hertz.a, hertz.approach
-    U0 = mu * E_star * d_hertz / G_star
-    if W >= a:
-        raise InputError(f"W = {W!r} mm >= a = {a:.6g} mm: the seed's model needs w = W/a < 1 (seed Eq. 10)")
-    reach = a + W
+
+def _springs(reach, ds, n_springs):
+    """Spring positions s (mm, symmetric about 0, reaching beyond `reach` = a + W by at least one spacing) and
+    the spacing ds (mm), from the given ds or n_springs (default DEFAULT_N_SPRINGS)."""
     if ds is not None and n_springs is not None:
         raise InputError("give either ds or n_springs, not both")
     if ds is not None:
@@ -159,16 +201,28 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
             raise InputError(f"n_springs = {n!r}: must be an integer >= 7")
         half = (int(n) - 1 + 1) // 2          # rounds an even count up to the next odd one
         ds = reach / (half - 1)
-    s = ds * np.arange(-half, half + 1, dtype=float)
+    return ds * np.arange(-half, half + 1, dtype=float), ds
 
-    centre, period, dW_used, nq = _centre_path(float(W), dW, periods)
+
+def _load_path(Ft, W, dW, periods, ramp_steps):
+    """The loading phase (Fn at c = 0, then Ft in ramp_steps increments) followed by the oscillation."""
+    centre, period, dW_used, nq = _centre_path(W, dW, periods)
     n_load = 1 + ramp_steps                    # normal load, then the Ft ramp
-    n_steps = n_load + centre.size
     Ft_path = np.concatenate(([0.0], Ft * np.arange(1, ramp_steps + 1) / ramp_steps,
                               np.full(centre.size, float(Ft))))
     c_path = np.concatenate((np.zeros(n_load), centre))
     period_path = np.concatenate((np.zeros(n_load, dtype=int), period))
+    return _LoadPath(Ft_path, c_path, period_path, n_load, dW_used, nq)
 
+
+def _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz):
+    """Step the spring row along the load path (one `_step_kernel` call per step, anchors updated in place).
+
+    Returns the histories (W, approach, U, Ft, contact_length, stick_length; NaN after a failure), the number of
+    steps done and the failure message (None, or the step without tangential equilibrium: gross sliding).
+    Raises ConvergenceError when the normal problem of a step does not settle.
+    """
+    n_steps = path.Ft.size
     hist = {key: np.full(n_steps, np.nan) for key in
             ("W", "approach", "U", "Ft", "contact_length", "stick_length")}
     anchor = np.zeros_like(s)
@@ -177,35 +231,18 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
     ratio = mu * E_star / G_star               # Coulomb bound on the deflection: b = ratio * u_z (mm)
     target_n = Fn / (E_star * ds)
     d_prev = d_hertz
-    done, failure = 0, None
     for n in range(n_steps):
-        target_t = Ft_path[n] / (G_star * ds)
+        c, Ft = path.centre[n], path.Ft[n]
         d, U_new, n_contact, n_stick, status = _step_kernel(
-            s, anchor, c_path[n], R, target_n, d_prev, ratio, target_t, U, v_buf, b_buf)
+            s, anchor, c, R, target_n, d_prev, ratio, Ft / (G_star * ds), U, v_buf, b_buf)
         if status == 2:
             raise ConvergenceError("MDR normal problem: contact set did not settle", solver="simulate_mdr",
-                                   iterations=200, regime=f"step {n}, centre {c_path[n]:.6g} mm")
+                                   iterations=200, regime=f"step {n}, centre {c:.6g} mm")
         if status == 1:
-            failure = (f"no tangential equilibrium at step {n} (period {period_path[n]}): Ft = {Ft_path[n]:.6g}"
-                       f" N exceeds the friction capacity mu Fn = {mu * Fn:.6g} N")
-            break
+            return hist, n, (f"no tangential equilibrium at step {n} (period {path.period[n]}): Ft = {Ft:.6g}"
+                             f" N exceeds the friction capacity mu Fn = {mu * Fn:.6g} N")
         U, d_prev = U_new, d
-        hist["W"][n], hist["approach"][n], hist["U"][n], hist["Ft"][n] = c_path[n], d, U, Ft_path[n]
+        hist["W"][n], hist["approach"][n], hist["U"][n], hist["Ft"][n] = c, d, U, Ft
         hist["contact_length"][n] = ds * n_contact
         hist["stick_length"][n] = ds * n_stick
-        done = n + 1
-    history = {key: val[:done] for key, val in hist.items()}
-    history["step"] = np.arange(done)
-    history["period"] = period_path[:done]
-
-    ends = [n_load - 1 + k * 4 * nq for k in range(periods + 1)]
-    U_end = np.array([history["U"][i] for i in ends if i < done])
-    if failure is not None:
-        cls = gross_sliding(U_end, U0, failure)
-    else:
-        cls = classify(U_end, U0, tol=shakedown_tol)
-    U_stat = float(history["U"][n_load - 1]) if done >= n_load else math.nan
-    stick0 = float(history["stick_length"][n_load - 1]) if done >= n_load else math.nan
-    return MDRResult(history=history, U_period_end=U_end, U_stat=U_stat, U0=U0, a=a, d=d_hertz,
-                     dW_used=dW_used, ds=ds, n_springs=s.size, f_t=Ft / (mu * Fn), w=W / a,
-                     classification=cls, stick_length_static=stick0)
+    return hist, n_steps, None

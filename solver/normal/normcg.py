@@ -180,6 +180,32 @@ def solve_normal(op, profile, *, force=None, approach=None, initial=None, extra_
     Returns NormalResult. Raises InputError on invalid input (naming the parameter) and ConvergenceError
     (solver='normal') when tol is not reached within params.max_iter iterations.
     """
+    force, approach = _checked_load(params, force, approach)
+    shape, dA = op.grid.shape, op.grid.cell_area
+    h = _field("profile", profile, shape)
+    extra = None if extra_displacement is None else _field("extra_displacement", extra_displacement, shape)
+    h_eff = h if extra is None else h + extra
+    p, u, reuses = _start(op, h_eff, force, initial)
+    if approach is not None and not np.any(p > 0.0) and not np.any(h_eff < approach):
+        # the surfaces do not touch even rigidly: the exact solution is p = 0
+        return _result(h, extra, p, u, approach, dA, 0, 0.0)
+    # in approach mode a cold start has C = {h* < d}: the first residual is d - h* > 0 there
+    cg = _NormCG(op, p, u, h_eff, force, approach, reuses)
+    residual = math.inf
+    while cg.iterations < params.max_iter:
+        residual, rms_p = cg.iterate()
+        if not math.isfinite(residual) and rms_p > 0.0:
+            break
+        if not cg.changed and residual <= params.tol:
+            _memo.store(op, p, u, cg.reuses)
+            return _result(h, extra, p, u, cg.d, dA, cg.iterations, residual)
+        if approach is not None and not cg.active.any() and rms_p == 0.0:
+            return _result(h, extra, p, u, cg.d, dA, cg.iterations, 0.0)
+    raise _not_converged(cg, params, residual)
+
+
+def _checked_load(params, force, approach):
+    """(force, approach) as floats, exactly one of them given (the other None), or InputError."""
     if not isinstance(params, NormalParams):
         raise InputError(f"params = {params!r}: must be a NormalParams instance")
     if (force is None) == (approach is None):
@@ -193,18 +219,22 @@ def solve_normal(op, profile, *, force=None, approach=None, initial=None, extra_
         approach = float(approach)
         if not math.isfinite(approach):
             raise InputError(f"approach = {approach!r} mm: must be finite")
-    grid = op.grid
-    shape = grid.shape
-    dA = grid.cell_area
-    h = _field("profile", profile, shape)
-    extra = None if extra_displacement is None else _field("extra_displacement", extra_displacement, shape)
-    h_eff = h if extra is None else h + extra
-    deflate = force is not None
+    return force, approach
 
-    # --- initial pressure, active set and displacement ----------------------------------------------
+
+def _start(op, h_eff, force, initial):
+    """Initial pressure p (MPa, on Fn when the force is prescribed), its displacement u = A p (mm; zero when
+    p = 0) and the memo's reuse count of u.
+
+    The warm start `initial` (negative values cut to 0) takes A p from the memo when it is the last
+    converged pressure; without it, or with an all-zero one in force mode, the Hertz-shaped `_cold_start`
+    (force prescribed) or p = 0 (approach prescribed).
+    """
+    dA = op.grid.cell_area
+    deflate = force is not None
     memo = None
     if initial is not None:
-        p = np.maximum(_field("initial", initial, shape), 0.0)
+        p = np.maximum(_field("initial", initial, h_eff.shape), 0.0)
         # a warm start is usually the previous converged pressure, whose A p the memo holds
         memo, reuses = _memo.lookup(op, p)
         if deflate and not np.any(p > 0.0):
@@ -212,92 +242,125 @@ def solve_normal(op, profile, *, force=None, approach=None, initial=None, extra_
     elif deflate:
         p = _cold_start(h_eff, force, dA, op.materials.E_star)
     else:
-        p = np.zeros(shape)
+        p = np.zeros(h_eff.shape)
     scale = force / (dA * p.sum()) if deflate else 1.0
     if deflate:
         p *= scale
-    active = p > 0.0
-    u = np.zeros(shape)
+    u = np.zeros(h_eff.shape)
     if memo is None:
         reuses = 0
-    if active.any():
+    if np.any(p > 0.0):
         if memo is not None:
             np.multiply(memo, scale, out=u)
         else:
             op.normal(p, out=u)
-    elif approach is not None and not np.any(h_eff < approach):
-        # the surfaces do not touch even rigidly: the exact solution is p = 0
-        return _result(h, extra, p, u, approach, dA, 0, 0.0)
-    # in approach mode a cold start has C = {h* < d}: the first residual is d - h* > 0 there
+    return p, u, reuses
 
-    # --- work buffers (the only large allocations of the solve) -------------------------------------
-    r = np.empty(shape)
-    r_prev = np.zeros(shape)
-    z = np.empty(shape)
-    v = np.zeros(shape)
-    q = np.empty(shape)
-    flat = {k: a.reshape(-1) for k, a in
-            dict(p=p, u=u, h=h_eff, r=r, r_prev=r_prev, z=z, v=v, q=q, active=active).items()}
-    max_columns = _max_column_corrections(grid.size)
-    trunc_index = np.empty(max_columns, dtype=np.int64)
-    trunc_value = np.empty(max_columns)
-    kernel = None
-    nx = grid.nx
-    n = grid.size
 
-    d, _, emax, umax = _residual_and_entries(flat["u"], flat["h"], 0.0 if deflate else approach,
-                                             flat["active"], flat["r"], deflate, not active.any())
-    tol = params.tol
-    rz_old = 0.0
-    residual = math.inf
-    iterations = 0
-    while iterations < params.max_iter:
-        iterations += 1
-        # preconditioned, projected residual and the Polak-Ribiere direction
-        op.normal_inverse(r, out=z)
-        rz_old = _direction(flat["z"], flat["r"], flat["r_prev"], flat["v"], rz_old, flat["active"], deflate)
-        op.normal(v, out=q)
-        ntrunc, psum, dp2, p2 = _step(flat["p"], flat["u"], flat["v"], flat["q"], flat["r"], flat["active"],
-                                      trunc_index, trunc_value)
-        if ntrunc:
-            if ntrunc <= max_columns:
-                if kernel is None:
-                    kernel = _wrapped_kernel(op)
-                _add_columns(flat["u"], kernel, nx, trunc_index, trunc_value, ntrunc)
-            else:
-                op.normal(p, out=u)
-                reuses = 0  # u is exact again
-            if deflate:
-                scale = force / (dA * psum)
-                p *= scale
-                u *= scale
-                p2 *= scale * scale
-        r, r_prev = r_prev, r
-        flat["r"], flat["r_prev"] = flat["r_prev"], flat["r"]
-        d, entered, emax, umax = _residual_and_entries(flat["u"], flat["h"], 0.0 if deflate else approach,
-                                                       flat["active"], flat["r"], deflate)
-        if ntrunc or entered:
-            rz_old = 0.0  # active set changed: restart with the preconditioned steepest descent
-        rms_p = math.sqrt(p2 / n)
-        update = math.sqrt(dp2 / n) / rms_p if rms_p > 0.0 else (0.0 if dp2 == 0.0 else math.inf)
+def _update_ratio(dp2, p2, n):
+    """(rms(p_k - p_{k-1}) / rms(p_k), rms(p_k)) from the sums of squares over the n elements."""
+    rms_p = math.sqrt(p2 / n)
+    update = math.sqrt(dp2 / n) / rms_p if rms_p > 0.0 else (0.0 if dp2 == 0.0 else math.inf)
+    return update, rms_p
+
+
+class _NormCG:
+    """The state and work buffers of one NormCG solve (the only large allocations of the solve).
+
+    p and u (= A p) are updated in place; `iterate` takes one CG step on the active set C (`active`),
+    `changed` tells whether it changed C, `d` is the approach (mean_C (u + h*) with a prescribed force).
+    """
+
+    def __init__(self, op, p, u, h_eff, force, approach, reuses):
+        shape = p.shape
+        self.op, self.p, self.u, self.force, self.reuses = op, p, u, force, reuses
+        self.dA = op.grid.cell_area
+        self.deflate = force is not None
+        self.target = 0.0 if self.deflate else approach    # the d passed to the residual kernel
+        self.active = p > 0.0
+        self.r = np.empty(shape)
+        self.r_prev = np.zeros(shape)
+        self.z = np.empty(shape)
+        self.v = np.zeros(shape)
+        self.q = np.empty(shape)
+        self.flat = {k: a.reshape(-1) for k, a in
+                     dict(p=p, u=u, h=h_eff, r=self.r, r_prev=self.r_prev, z=self.z, v=self.v, q=self.q,
+                          active=self.active).items()}
+        self.max_columns = _max_column_corrections(op.grid.size)
+        self.trunc_index = np.empty(self.max_columns, dtype=np.int64)
+        self.trunc_value = np.empty(self.max_columns)
+        self.kernel = None
+        self.rz_old = 0.0
+        self.iterations = 0
+        self.changed = False
+        f = self.flat
+        self.d = _residual_and_entries(f["u"], f["h"], self.target, f["active"], f["r"], self.deflate,
+                                       not self.active.any())[0]
+
+    def iterate(self):
+        """One NormCG iteration (theory.md §4.3); returns (residual, rms p) of the stopping rule."""
+        self.iterations += 1
+        self._direction()
+        ntrunc, dp2, p2 = self._step()
+        entered, emax, umax = self._residual()
+        self.changed = bool(ntrunc or entered)
+        if self.changed:
+            self.rz_old = 0.0  # active set changed: restart with the preconditioned steepest descent
+        update, rms_p = _update_ratio(dp2, p2, self.p.size)
         gap_ratio = emax / umax if umax > 0.0 else (0.0 if emax == 0.0 else math.inf)
-        residual = max(update, gap_ratio)
-        if not math.isfinite(residual) and rms_p > 0.0:
-            break
-        if not (ntrunc or entered) and residual <= tol:
-            _memo.store(op, p, u, reuses)
-            return _result(h, extra, p, u, d, dA, iterations, residual)
-        if not deflate and not active.any() and rms_p == 0.0:
-            return _result(h, extra, p, u, d, dA, iterations, 0.0)
+        return max(update, gap_ratio), rms_p
 
+    def _direction(self):
+        """Preconditioned, projected residual z = P_C M P_C r (deflated in force mode), the Polak-Ribiere
+        direction v and its product q = A v."""
+        f = self.flat
+        self.op.normal_inverse(self.r, out=self.z)
+        self.rz_old = _direction(f["z"], f["r"], f["r_prev"], f["v"], self.rz_old, f["active"], self.deflate)
+        self.op.normal(self.v, out=self.q)
+
+    def _step(self):
+        """p += alpha v, u += alpha q; elements with p < 0 leave C (p = 0, their influence removed from u
+        exactly) and the pressure is rescaled to Fn. Returns (elements truncated, |dp|^2, |p|^2)."""
+        f = self.flat
+        ntrunc, psum, dp2, p2 = _step(f["p"], f["u"], f["v"], f["q"], f["r"], f["active"], self.trunc_index,
+                                      self.trunc_value)
+        if ntrunc:
+            if ntrunc <= self.max_columns:
+                if self.kernel is None:
+                    self.kernel = _wrapped_kernel(self.op)
+                _add_columns(f["u"], self.kernel, self.op.grid.nx, self.trunc_index, self.trunc_value, ntrunc)
+            else:
+                self.op.normal(self.p, out=self.u)
+                self.reuses = 0  # u is exact again
+            if self.deflate:
+                scale = self.force / (self.dA * psum)
+                self.p *= scale
+                self.u *= scale
+                p2 *= scale * scale
+        return ntrunc, dp2, p2
+
+    def _residual(self):
+        """New residual r = -e on C (the old one kept for Polak-Ribiere), the approach d, and the exterior
+        elements with e < 0 entering C. Returns (elements entered, max_C |e|, max_C u)."""
+        f = self.flat
+        self.r, self.r_prev = self.r_prev, self.r
+        f["r"], f["r_prev"] = f["r_prev"], f["r"]
+        self.d, entered, emax, umax = _residual_and_entries(f["u"], f["h"], self.target, f["active"], f["r"],
+                                                            self.deflate)
+        return entered, emax, umax
+
+
+def _not_converged(cg, params, residual):
+    """The ConvergenceError of a solve that ran out of iterations (or whose residual is not finite)."""
+    active = cg.active
     ncon = int(np.count_nonzero(active))
     edge = bool(active[0].any() or active[-1].any() or active[:, 0].any() or active[:, -1].any())
-    regime = (f"{'force' if deflate else 'approach'} prescribed, {ncon} of {n} elements in contact, "
-              f"last iteration changed the contact set: {bool(ntrunc or entered)}"
+    regime = (f"{'force' if cg.deflate else 'approach'} prescribed, {ncon} of {active.size} elements in "
+              f"contact, last iteration changed the contact set: {cg.changed}"
               + ("; the contact reaches the grid edge (grid too small?)" if edge else ""))
-    raise ConvergenceError(f"NormCG did not reach tol within max_iter = {params.max_iter} iterations",
-                           solver="normal", iterations=iterations, residual=float(residual), tol=tol,
-                           regime=regime)
+    return ConvergenceError(f"NormCG did not reach tol within max_iter = {params.max_iter} iterations",
+                            solver="normal", iterations=cg.iterations, residual=float(residual), tol=params.tol,
+                            regime=regime)
 
 
 def _result(h, extra, p, u, d, dA, iterations, residual) -> NormalResult:

@@ -29,6 +29,17 @@ def _gram_terms(slip, nxv, nyv, wx, wy):
     return tx * tx, tx * ty, ty * ty, tx * ws, ty * ws
 
 
+@nb.njit(cache=True, inline="always")
+def _add_gram_terms(sums, slip, nxv, nyv, wx, wy):
+    """sums (Gxx, Gxy, Gyy, bx, by) plus one element's terms (`_gram_terms`)."""
+    a, b, c, d, e = _gram_terms(slip, nxv, nyv, wx, wy)
+    return sums[0] + a, sums[1] + b, sums[2] + c, sums[3] + d, sums[4] + e
+
+
+#: the empty sums of the shift fit (Gxx, Gxy, Gyy, bx, by)
+_NO_TERMS = (0.0, 0.0, 0.0, 0.0, 0.0)
+
+
 @_jit
 def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
     """Division and shift fit of the current iterate, in one pass.
@@ -41,11 +52,7 @@ def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
     ny, nx = g.shape
     n_stick = 0
     n_slip = 0
-    gxx = 0.0
-    gxy = 0.0
-    gyy = 0.0
-    bx = 0.0
-    by = 0.0
+    sums = _NO_TERMS
     for j in range(ny):
         for i in range(nx):
             wx = u[0, j, i] - u_prev[0, j, i]
@@ -72,12 +79,8 @@ def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
             else:
                 region[j, i] = 1
                 n_stick += 1
-            a, b, c, d, e = _gram_terms(slip, nxv, nyv, wx, wy)
-            gxx += a
-            gxy += b
-            gyy += c
-            bx += d
-            by += e
+            sums = _add_gram_terms(sums, slip, nxv, nyv, wx, wy)
+    gxx, gxy, gyy, bx, by = sums
     return n_stick, n_slip, gxx, gxy, gyy, bx, by
 
 
@@ -91,23 +94,13 @@ def gram_and_fit(nrm, region, w):
     `classify` returns the same sums; this kernel recomputes them after a release changed the division.
     """
     ny, nx = region.shape
-    gxx = 0.0
-    gxy = 0.0
-    gyy = 0.0
-    bx = 0.0
-    by = 0.0
+    sums = _NO_TERMS
     for j in range(ny):
         for i in range(nx):
             r = region[j, i]
-            if r == 0:
-                continue
-            a, b, c, d, e = _gram_terms(r == 2, nrm[0, j, i], nrm[1, j, i], w[0, j, i], w[1, j, i])
-            gxx += a
-            gxy += b
-            gyy += c
-            bx += d
-            by += e
-    return gxx, gxy, gyy, bx, by
+            if r != 0:
+                sums = _add_gram_terms(sums, r == 2, nrm[0, j, i], nrm[1, j, i], w[0, j, i], w[1, j, i])
+    return sums
 
 
 @_jit

@@ -199,66 +199,102 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
     ConvergenceError when the residual does not reach params.tol within params.max_iter products.
     """
     grid = op.grid
-    shape = grid.shape
     dA = grid.cell_area
     if (force is None) == (shift is None):
         raise InputError("solve_tangential: give exactly one of force=(Fx, Fy) N or shift=(dUx, dUy) mm")
+    g, gmax = _checked_bound(bound, grid.shape)
+    tau_p = _checked_previous_traction(previous_traction, grid.shape)
+    capacity = float(np.sum(g)) * dA
+    F, dU = _force_or_shift(force, shift, capacity)
+    it = ProjectedTangCG(op, g, dU, None if F is None else F / dA,
+                         None if extra_slip is None else np.asarray(extra_slip, dtype=float), params,
+                         lambda region: _regime(force, capacity, region))
+    ws = it.ws
+    # start (theory §5.1): u' = A tau', tau on the discs (and the force), u = A tau
+    memo_reuses = _previous_displacement(it, tau_p, previous_displacement)
+    if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
+        return _finish(it, extra_slip, dA, 0.0)
+    FP.start_traction(ws.tau, tau_p if initial is None else initial, g, it.f_cells, previous_region, ws.region,
+                      ws.u, it.axx, it.ayy)
+    it.memo_reuses = _start_displacement(it, tau_p, memo_reuses)
+    # projected TangCG with the force constraint deflated (theory §5.4, §5.2); dU is its multiplier
+    residual = it.run()
+    if F is not None and not np.any(ws.region == 1):
+        _stick_point_shift(ws.tau, ws.w, g, ws.region, dU, ws.slip)
+    _memo.store(op, ws.tau, ws.u, it.memo_reuses)
+    return _finish(it, extra_slip, dA, residual)
+
+
+def _checked_bound(bound, shape):
+    """The bound g = mu p (MPa) as a contiguous float array and its maximum, or InputError."""
     g = np.ascontiguousarray(bound, dtype=float)
     if g.shape != shape:
         raise InputError(f"bound has shape {g.shape}, the grid is {shape}")
     gmin, gmax = (float(g.min()), float(g.max())) if g.size else (0.0, 0.0)
     if not (gmin >= 0.0 and math.isfinite(gmax)):  # NaN fails both comparisons
         raise InputError("bound g = mu p must be finite and >= 0 (MPa)")
+    return g, gmax
+
+
+def _checked_previous_traction(previous_traction, shape):
+    """tau' (MPa) as a float array of shape (2, ny, nx), or InputError."""
     tau_p = np.asarray(previous_traction, dtype=float)
     if tau_p.shape != (2,) + shape:
         raise InputError(f"previous_traction has shape {tau_p.shape}, expected {(2,) + shape}")
-    force_mode = force is not None
-    capacity = float(np.sum(g)) * dA
-    if force_mode:
-        F = np.asarray(force, dtype=float).reshape(2)
-        Fmag = float(np.hypot(*F))
-        if not np.all(np.isfinite(F)):
-            raise InputError(f"force = {F!r} N must be finite")
-        if Fmag >= capacity * (1.0 - CAPACITY_MARGIN):
-            raise GrossSlidingError(
-                f"tangential force |F| = {Fmag:.6g} N (F = ({F[0]:.6g}, {F[1]:.6g}) N) reaches the friction "
-                f"capacity mu Fn = sum(mu p) dA = {capacity:.6g} N "
-                f"(f_t = {Fmag / capacity if capacity > 0 else math.inf:.6g} >= 1): gross sliding, "
-                "no static equilibrium")
-        dU = np.zeros(2)
-    else:
+    return tau_p
+
+
+def _force_or_shift(force, shift, capacity):
+    """(F, dU): the prescribed force F (2,) N and dU = 0, or F = None and the prescribed shift dU (2,) mm (a
+    copy: the solver writes the multiplier into it). GrossSlidingError when |F| reaches the capacity (N)."""
+    if force is None:
         dU = np.asarray(shift, dtype=float).reshape(2).copy()
         if not np.all(np.isfinite(dU)):
             raise InputError(f"shift = {dU!r} mm must be finite")
+        return None, dU
+    F = np.asarray(force, dtype=float).reshape(2)
+    Fmag = float(np.hypot(*F))
+    if not np.all(np.isfinite(F)):
+        raise InputError(f"force = {F!r} N must be finite")
+    if Fmag >= capacity * (1.0 - CAPACITY_MARGIN):
+        raise GrossSlidingError(
+            f"tangential force |F| = {Fmag:.6g} N (F = ({F[0]:.6g}, {F[1]:.6g}) N) reaches the friction "
+            f"capacity mu Fn = sum(mu p) dA = {capacity:.6g} N "
+            f"(f_t = {Fmag / capacity if capacity > 0 else math.inf:.6g} >= 1): gross sliding, "
+            "no static equilibrium")
+    return F, np.zeros(2)
 
-    it = ProjectedTangCG(op, g, dU, F / dA if force_mode else None,
-                         None if extra_slip is None else np.asarray(extra_slip, dtype=float), params,
-                         lambda region: _regime(force, capacity, region))
-    ws = it.ws
-    tau, u, u_prev, region = ws.tau, ws.u, ws.u_prev, ws.region
 
-    # --- previous displacement and starting traction -----------------------------------------------
-    memo_reuses = 0
+def _previous_displacement(it, tau_p, previous_displacement):
+    """ws.u_prev <- u' = A tau': the given one, the memo's (tau' a recent solution) or one product (zero when
+    tau' = 0). Returns the memo's reuse count of u' (0 when not from the memo)."""
+    u_prev = it.ws.u_prev
     if previous_displacement is not None:
         u_given = np.asarray(previous_displacement, dtype=float)
-        if u_given.shape != (2,) + shape or not np.all(np.isfinite(u_given)):
-            raise InputError(f"previous_displacement: shape {u_given.shape} (expected {(2,) + shape}) and "
+        if u_given.shape != u_prev.shape or not np.all(np.isfinite(u_given)):
+            raise InputError(f"previous_displacement: shape {u_given.shape} (expected {u_prev.shape}) and "
                              "finite values (mm) required")
         u_prev[...] = u_given
-    elif np.any(tau_p):
-        memo, memo_reuses = _memo.lookup(op, tau_p)
+        return 0
+    memo_reuses = 0
+    if np.any(tau_p):
+        memo, memo_reuses = _memo.lookup(it.op, tau_p)
         if memo is not None:
             u_prev[...] = memo
         else:
             it.matvec(tau_p, u_prev)
-    if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
-        return _finish(it, extra_slip, dA, 0.0)
-    FP.start_traction(tau, tau_p if initial is None else initial, g, it.f_cells, previous_region, region, u,
-                      it.axx, it.ayy)
+    return memo_reuses
+
+
+def _start_displacement(it, tau_p, memo_reuses):
+    """ws.u <- A tau of the starting traction: u' when tau = tau', else the memo's or one product. Returns
+    the reuse count of the memoised products behind u and u' (the larger)."""
+    ws = it.ws
+    tau, u = ws.tau, ws.u
     if same(tau, tau_p):
-        u[...] = u_prev
+        u[...] = ws.u_prev
     elif np.any(tau):
-        memo, reuses = _memo.lookup(op, tau)
+        memo, reuses = _memo.lookup(it.op, tau)
         if memo is not None:
             u[...] = memo
             memo_reuses = max(memo_reuses, reuses)
@@ -266,13 +302,7 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
             it.matvec(tau, u)
     else:
         u[...] = 0.0
-    it.memo_reuses = memo_reuses
-
-    residual = it.run()
-    if force_mode and not np.any(region == 1):
-        _stick_point_shift(tau, ws.w, g, region, dU, ws.slip)
-    _memo.store(op, tau, u, it.memo_reuses)
-    return _finish(it, extra_slip, dA, residual)
+    return memo_reuses
 
 
 #: The stick-point shift (`_stick_point_shift`) is kept only while every slip element with a resolved slip
