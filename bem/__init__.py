@@ -13,6 +13,7 @@ imported on first use, so that `rollcontact.bem.errors` does not load numpy, pyf
 from importlib import import_module
 
 _WHERE = {"ConvergenceError": "errors", "ContactEdgeError": "errors", "GrossSlidingError": "errors",
+          "OutputExistsError": "errors", "OutputInUseError": "errors",
           "InputError": "errors", "RollcontactError": "errors", "SceneError": "errors", "Grid": "grid",
           "contact_box": "grid", "influence_coefficients": "influence", "Material": "materials",
           "MaterialPair": "materials", "HalfSpaceOperator": "operator"}

@@ -45,3 +45,11 @@ class GrossSlidingError(RollcontactError, RuntimeError):
 
 class ContactEdgeError(RollcontactError, RuntimeError):
     """The contact area reached the edge of the computational grid: the grid is too small."""
+
+
+class OutputExistsError(InputError):
+    """An output file exists and was not to be replaced (the message names the file and --overwrite)."""
+
+
+class OutputInUseError(InputError):
+    """Another process is writing the same output (the message names the process and its host)."""

@@ -37,23 +37,27 @@ def load_scene(path=None, overrides=None) -> Scene:
     return scene.with_overrides(overrides) if overrides else scene
 
 
-def run(scene: Scene, output=None, *, progress=False) -> RunResult:
+def run(scene: Scene, output=None, *, overwrite=False, progress=False) -> RunResult:
     """Run `scene` on its model ([solver] fidelity: "bem", or "mdr" for the 1-D MDR model) and return the result.
 
     output: an HDF5 file to write (str or Path; the result's `path`), or None to keep the result in memory only.
-    progress: True for progress lines on stderr, a callable(message), or False for none.
+    A BEM run writes it as it goes (checkpoints with status 'incomplete'; `restart` continues a killed run).
+    overwrite: replace an existing file (else OutputExistsError, before any work); OutputInUseError when another
+    process is writing it. progress: True for progress lines on stderr, a callable(message), or False for none.
     """
     from rollcontact.cases.run.scene_run import run_scene
     out = check_output(output) if output is not None else None
-    return run_scene(_as_scene(scene), out, progress=_progress(progress))
+    return run_scene(_as_scene(scene), out, overwrite=overwrite, progress=_progress(progress))
 
 
-def restart(path, *, step=None, overrides=None, output=None, progress=False) -> RunResult:
+def restart(path, *, step=None, overrides=None, output=None, overwrite=False, progress=False) -> RunResult:
     """Continue the stored run `path` from a stored step (default: the last) and return the whole run (the source's
     history and snapshots up to that step, then the continuation).
 
     overrides: only the keys a restart may change (cases.run.restart.RESTART_SAFE_KEYS, e.g. {"motion.periods": 20}).
-    output: the new HDF5 file (not `path` itself), or None to keep the result in memory.
+    output: the HDF5 file to write, or None to keep the result in memory. It may be `path` itself when that run is
+    not complete (a checkpoint of a killed run, or a failed run): the run then continues in its own file.
+    overwrite: replace another existing file.
     """
     from rollcontact.cases.run.restart import continued_scene, load_restart
     from rollcontact.cases.run.scene_run import run_scene
@@ -61,15 +65,15 @@ def restart(path, *, step=None, overrides=None, output=None, progress=False) -> 
     items = Scene.assignments(overrides) if overrides else []
     scene = continued_scene(source, items)
     out = check_output(output) if output is not None else None
-    if out is not None and out.resolve() == source.path.resolve():
-        raise InputError(f"-o {out}: is the --restart file itself; a continuation that fails would replace its "
-                         "later steps; write to another file")
+    if out is not None and out.resolve() == source.path.resolve() and source.data.status == "complete":
+        raise InputError(f"-o {out}: is the --restart file itself, a complete run; a continuation that fails would "
+                         "replace its later steps; write to another file")
     attrs = dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
                  restart_overrides=items or [""])
     progress = _progress(progress)
     if progress:
         progress(f"continuing {source.path} from step {source.step} (period {source.period})")
-    return run_scene(scene, out, progress=progress, restart=source, attrs=attrs)
+    return run_scene(scene, out, overwrite=overwrite, progress=progress, restart=source, attrs=attrs)
 
 
 def read_run(path) -> RunResult:
@@ -78,7 +82,8 @@ def read_run(path) -> RunResult:
     return read_run_file(path, InputError, str(path))
 
 
-def sweep(scene: Scene, vary, output, *, overrides=None, jobs=None, scheduler=None, progress=False):
+def sweep(scene: Scene, vary, output, *, overrides=None, jobs=None, scheduler=None, overwrite=False,
+          progress=False):
     """Run every combination of the varied keys (as `rollcontact sweep`): one HDF5 file per run in the folder
     `output`, with output/summary.csv and summary.h5; a rerun resumes. Returns a SweepReport (planned, ran,
     skipped, failed, rows: one dict per finished run).
@@ -86,25 +91,26 @@ def sweep(scene: Scene, vary, output, *, overrides=None, jobs=None, scheduler=No
     vary: {"section.key": values}, values a list ([0.2, 0.4]) or a range string "start:stop:count"; or a list
     of `--vary` strings. overrides: as in `load_scene`, applied to every run before the varied values.
     jobs: local worker processes (default: the number of cores; 1 = this process); scheduler: a Dask scheduler
-    address (the `dask` extra). progress: True for progress lines on stderr.
+    address (the `dask` extra). overwrite: replace the summary of another sweep in `output` (else
+    OutputExistsError). Sweeps started on one folder share the work. progress: True for progress lines on stderr.
     """
     from rollcontact.cases.sweep.runner import run_sweep
     return run_sweep(_as_scene(scene), vary_specs(vary), output, overrides=Scene.assignments(overrides or []),
-                     jobs=jobs, scheduler=scheduler, progress=_stream(progress))
+                     jobs=jobs, scheduler=scheduler, overwrite=overwrite, progress=_stream(progress))
 
 
 def limit_search(scene: Scene, vary, output, *, overrides=None, tol=0.01, jobs=None, scheduler=None,
-                 progress=False):
+                 overwrite=False, progress=False):
     """The 3D shakedown limit by bisection on the run state (as `rollcontact limit-search`): varying motion.w
     searches f_t,lim(w), varying load.ft searches w_lim(f_t), other varied keys are carried along; to `tol` (in f_t
     or w). Results in output/limits.csv and limits.h5, probe runs in output/runs. Returns a LimitReport (rows:
     one dict per combination with lower, upper, midpoint, status and the MDR closed forms).
 
-    vary, overrides, jobs, scheduler, progress: as in `sweep`.
+    vary, overrides, jobs, scheduler, overwrite, progress: as in `sweep` (overwrite: of another search's limits).
     """
     from rollcontact.cases.sweep.limit_search import search_limits
     return search_limits(_as_scene(scene), vary_specs(vary), output, overrides=Scene.assignments(overrides or []),
-                         tol=tol, jobs=jobs, scheduler=scheduler, progress=_stream(progress))
+                         tol=tol, jobs=jobs, scheduler=scheduler, overwrite=overwrite, progress=_stream(progress))
 
 
 def vary_specs(vary) -> list[str]:

@@ -15,14 +15,19 @@ from rollcontact.bem.errors import InputError, RollcontactError, SceneError
 
 def _add_run(sub):
     p = sub.add_parser("run", help="run one scene (default: the seed paper's perpendicular scene)",
-                       description="Run one scene and write its results to HDF5. Units: mm, N, MPa.")
+                       description="Run one scene and write its results to HDF5, as it goes (checkpoints at every "
+                                   "period end; a killed run continues with --restart). Units: mm, N, MPa.")
     p.add_argument("scene", nargs="?", help="scene TOML file (default: the embedded paper scene)")
-    p.add_argument("-o", "--output", help="output HDF5 file (default: results/<scene name>.h5; with --set or "
-                   "--restart, results/<scene name>[__from_step<N>]__<key=value>....h5)")
+    p.add_argument("-o", "--output", help="output HDF5 file, not replaced if it exists unless --overwrite (default: "
+                   "results/<scene name>.h5; with --set or --restart, results/<scene name>[__from_step<N>]__"
+                   "<key=value>....h5; -2, -3, ... added to a default name that exists; --restart of an incomplete "
+                   "run: the run's own file)")
+    p.add_argument("--overwrite", action="store_true", help="replace the -o file if it exists")
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override a scene key, e.g. --set load.ft=0.77 (repeatable)")
     p.add_argument("--restart", metavar="RUN.h5",
-                   help="continue a stored run from its last stored step (or --step)")
+                   help="continue a stored run from its last stored step (or --step); a run killed while running "
+                        "continues from its last checkpoint")
     p.add_argument("--step", type=int, help="with --restart: the stored step to continue from")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
     p.set_defaults(func=_run)
@@ -30,7 +35,6 @@ def _add_run(sub):
 
 def _run(args) -> int:
     from rollcontact.cases import api
-    from rollcontact.cases.results.outputs import default_output
     from rollcontact.cases.run.summary import format_summary
     from rollcontact.cases.sweep.workers import sigterm_as_interrupt
     if args.step is not None and not args.restart:
@@ -39,22 +43,17 @@ def _run(args) -> int:
     if args.restart and args.scene:
         raise SceneError("give either a scene file or --restart, not both")
     progress = not args.quiet
-    out = args.output
     if args.restart:
-        run = lambda out: api.restart(args.restart, step=args.step, overrides=args.overrides,  # noqa: E731
-                                      output=out, progress=progress)
-        if out is None:
-            from rollcontact.cases.run.restart import load_restart
-            source = load_restart(args.restart, args.step)
-            out = _default_output(default_output(source.scene.name, args.overrides, source.step), progress)
+        out = args.output or _restart_output(args, progress)
+        run = lambda: api.restart(args.restart, step=args.step, overrides=args.overrides,  # noqa: E731
+                                  output=out, overwrite=args.overwrite, progress=progress)
     else:
         scene = api.load_scene(args.scene, args.overrides)
-        run = lambda out: api.run(scene, out, progress=progress)  # noqa: E731
-        if out is None:
-            out = _default_output(default_output(scene.name, args.overrides), progress and args.overrides)
+        out = args.output or _free_default(scene.name, args.overrides, None, progress)
+        run = lambda: api.run(scene, out, overwrite=args.overwrite, progress=progress)  # noqa: E731
     sigterm_as_interrupt(flag=False)
     try:
-        result = run(out)
+        result = run()
     except api.RunInterrupted as exc:
         print(_interrupted_message(exc.result), file=sys.stderr)
         return 130
@@ -68,10 +67,28 @@ def _run(args) -> int:
     return 0 if result.status == "complete" else 1
 
 
-def _default_output(out, announce):
-    if announce:
-        print(f"no -o given: writing to {out} (named after the scene, the restart step and the --set overrides, so "
-              "the plain scene's file is not overwritten)", file=sys.stderr, flush=True)
+def _restart_output(args, progress) -> Path:
+    """Without -o, a restart of an incomplete run (a checkpoint, a failed run) continues in its own file; one of a
+    complete run goes to a new file named after it and the step."""
+    from rollcontact.cases.results.hdf5 import stored_summary
+    from rollcontact.cases.run.restart import load_restart
+    stored = stored_summary(args.restart)
+    if stored is not None and stored["status"] != "complete":
+        return Path(args.restart)
+    source = load_restart(args.restart, args.step)
+    return _free_default(source.scene.name, args.overrides, source.step, progress)
+
+
+def _free_default(scene_name, overrides, restart_step, progress) -> Path:
+    """The default output (cases.results.outputs.default_output), with -2, -3, ... added while that name exists:
+    a run without -o never replaces a file."""
+    from rollcontact.cases.results.outputs import default_output, free_name
+    base = default_output(scene_name, overrides, restart_step)
+    out = free_name(base)
+    if progress and (overrides or restart_step is not None or out != base):
+        why = f"{base} exists" if out != base else "named after the scene, the restart step and the --set overrides"
+        print(f"no -o given: writing to {out} ({why}; no file is replaced without -o ... --overwrite)",
+              file=sys.stderr, flush=True)
     return out
 
 

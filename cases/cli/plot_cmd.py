@@ -39,9 +39,9 @@ def plot_handler(args) -> int:
         if target.is_dir():
             if args.step is not None:
                 raise PlotError("--step applies to a run file, not to a sweep folder")
-            paths = plot_folder(target, out_dir, notes)
+            paths = plot_folder(target, out_dir, notes, overwrite=args.overwrite)
         else:
-            paths = plot_run(open_run(target), out_dir, args.step, notes)
+            paths = plot_run(open_run(target), out_dir, args.step, notes, overwrite=args.overwrite)
     except PlotError as exc:
         print(f"rollcontact plot: error: {exc}", file=sys.stderr)
         return 2
@@ -56,7 +56,7 @@ def compare_handler(args) -> int:
     try:
         va, vb = open_run(args.a), open_run(args.b)
         out_dir = Path(args.output) if args.output else _default_dir(Path(args.a))
-        paths = compare_runs(va, vb, out_dir, args.step, notes)
+        paths = compare_runs(va, vb, out_dir, args.step, notes, overwrite=args.overwrite)
     except PlotError as exc:
         print(f"rollcontact compare: error: {exc}", file=sys.stderr)
         return 2
@@ -73,6 +73,7 @@ def register(subparsers):
     p.add_argument("target", help="run file (.h5) or sweep folder")
     p.add_argument("--step", type=int, help="stored step for the maps (default: the last stored step)")
     p.add_argument("-o", "--output", help="output folder (default: plots/ next to the input)")
+    p.add_argument("--overwrite", action="store_true", help="replace figures that exist in the output folder")
     p.set_defaults(func=plot_handler)
     c = subparsers.add_parser(
         "compare", help="two runs side by side on shared colour scales, with B - A",
@@ -82,5 +83,6 @@ def register(subparsers):
     c.add_argument("b", help="run file B (.h5)")
     c.add_argument("--step", type=int, help="stored step of both runs (default: the last stored of each)")
     c.add_argument("-o", "--output", help="output folder (default: plots/ next to A)")
+    c.add_argument("--overwrite", action="store_true", help="replace figures that exist in the output folder")
     c.set_defaults(func=compare_handler)
     return p, c

@@ -27,6 +27,9 @@ def _common(p):
                    help="local worker processes (default: the number of cores; 1 = in this process)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="Dask distributed scheduler, e.g. tcp://host:8786 (needs the 'dask' extra)")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace the summary table of another sweep or search in OUTDIR (a rerun of the same command "
+                        "resumes without it)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
 
 
@@ -60,11 +63,12 @@ def sweep_handler(args) -> int:
     sigterm_as_interrupt()
     try:
         report = api.sweep(api.load_scene(args.scene), args.vary, args.output, overrides=args.overrides,
-                           jobs=args.jobs, scheduler=args.scheduler, progress=not args.quiet)
+                           jobs=args.jobs, scheduler=args.scheduler, overwrite=args.overwrite,
+                           progress=not args.quiet)
     except KeyboardInterrupt:
         return 130
     print(f"{report.planned} run(s): {report.ran} run now, {report.skipped} skipped (already complete), "
-          f"{report.failed} failed; summary: {report.summary_csv}")
+          f"{report.elsewhere} run by another process, {report.failed} failed; summary: {report.summary_csv}")
     return 1 if report.failed else 0
 
 
@@ -78,7 +82,8 @@ def limit_handler(args) -> int:
     sigterm_as_interrupt()
     try:
         report = api.limit_search(api.load_scene(args.scene), args.vary, args.output, overrides=args.overrides,
-                                  tol=args.tol, jobs=args.jobs, scheduler=args.scheduler, progress=not args.quiet)
+                                  tol=args.tol, jobs=args.jobs, scheduler=args.scheduler, overwrite=args.overwrite,
+                                  progress=not args.quiet)
     except KeyboardInterrupt:
         return 130
     name = "f_t,lim" if report.searched == "load.ft" else "w_lim"

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 import math
+import os
 from pathlib import Path
 
 import matplotlib
@@ -21,7 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from rollcontact.bem.errors import InputError  # noqa: E402
+from rollcontact.bem.errors import InputError, OutputExistsError  # noqa: E402
 
 from rollcontact.cases.results.hdf5 import read_run_file  # noqa: E402
 from rollcontact.cases.results.run_result import RunResult  # noqa: E402
@@ -299,15 +300,31 @@ def centre_line(view: RunView, values: np.ndarray, step: int, direction, order=1
     return s[inside], v[inside]
 
 
-def save_figure(fig, out_dir, stem) -> list[Path]:
-    """Write `stem`.png (DPI) and `stem`.pdf into out_dir; returns both paths."""
+def save_figure(fig, out_dir, stem, overwrite=False) -> list[Path]:
+    """Write `stem`.png (DPI) and `stem`.pdf into out_dir, each through a temporary file renamed into place;
+    returns both paths. An existing one is not replaced unless `overwrite` (OutputExistsError naming it and
+    --overwrite; the figure is then not written at all)."""
     out_dir = output_folder(out_dir)
     paths = [out_dir / f"{stem}.png", out_dir / f"{stem}.pdf"]
-    fig.savefig(paths[0], dpi=DPI)
+    existing = [p for p in paths if p.exists()]
+    if existing and not overwrite:
+        plt.close(fig)
+        raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: add "
+                                "--overwrite, or give another folder with -o")
+    _save_atomically(fig, paths[0], dpi=DPI)
     fig.set_layout_engine("none")       # keep the layout just computed: the PDF needs no second pass
-    fig.savefig(paths[1])
+    _save_atomically(fig, paths[1])
     plt.close(fig)
     return paths
+
+
+def _save_atomically(fig, path: Path, **kwargs):
+    tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+    try:
+        fig.savefig(tmp, format=path.suffix[1:], **kwargs)
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
 
 
 def _compact(steps) -> str:

@@ -346,10 +346,10 @@ def compare_maps_figure(va: RunView, sa: int, vb: RunView, sb: int):
     return fig
 
 
-def plot_run(view: RunView, out_dir, step: int | None = None, notes=None) -> list:
+def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwrite=False) -> list:
     """All figures of one run into out_dir: <stem>_history, _maps, _centrelines (PNG + PDF)."""
     stem = view.path.stem
-    paths = save_figure(history_figure([view]), out_dir, f"{stem}_history")
+    paths = save_figure(history_figure([view]), out_dir, f"{stem}_history", overwrite)
     if not view.has_fields:
         if step is not None:
             raise PlotError(view.no_fields_note().replace("only the history figure is drawn",
@@ -358,15 +358,16 @@ def plot_run(view: RunView, out_dir, step: int | None = None, notes=None) -> lis
             notes.append(view.no_fields_note())
         return paths
     step = view.resolve_step(step)
-    paths += save_figure(maps_figure(view, step), out_dir, f"{stem}_maps_step{step}")
-    paths += save_figure(profiles_figure([view], [step]), out_dir, f"{stem}_centrelines_step{step}")
+    paths += save_figure(maps_figure(view, step), out_dir, f"{stem}_maps_step{step}", overwrite)
+    paths += save_figure(profiles_figure([view], [step]), out_dir, f"{stem}_centrelines_step{step}", overwrite)
     return paths
 
 
-def compare_runs(va: RunView, vb: RunView, out_dir, step: int | None = None, notes=None) -> list:
+def compare_runs(va: RunView, vb: RunView, out_dir, step: int | None = None, notes=None,
+                 overwrite=False) -> list:
     """History overlay, maps with B - A and overlaid centre lines of two runs."""
     stem = f"compare_{va.path.stem}_vs_{vb.path.stem}"
-    paths = save_figure(history_figure([va, vb]), out_dir, f"{stem}_history")
+    paths = save_figure(history_figure([va, vb]), out_dir, f"{stem}_history", overwrite)
     missing = [v for v in (va, vb) if not v.has_fields]
     if missing:
         if step is not None:
@@ -376,6 +377,6 @@ def compare_runs(va: RunView, vb: RunView, out_dir, step: int | None = None, not
             notes += [v.no_fields_note() for v in missing]
         return paths
     sa, sb = va.resolve_step(step), vb.resolve_step(step)
-    paths += save_figure(compare_maps_figure(va, sa, vb, sb), out_dir, f"{stem}_maps")
-    paths += save_figure(profiles_figure([va, vb], [sa, sb]), out_dir, f"{stem}_centrelines")
+    paths += save_figure(compare_maps_figure(va, sa, vb, sb), out_dir, f"{stem}_maps", overwrite)
+    paths += save_figure(profiles_figure([va, vb], [sa, sb]), out_dir, f"{stem}_centrelines", overwrite)
     return paths

@@ -358,7 +358,7 @@ def ratcheting_figure(points, title):
     return fig
 
 
-def plot_folder(folder, out_dir=None, notes=None, out=print) -> list:
+def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) -> list:
     """The three sweep figures of `folder` into out_dir (default: the folder); prints the fitted kappas."""
     folder = Path(folder)
     points = read_folder(folder, notes)
@@ -375,7 +375,7 @@ def plot_folder(folder, out_dir=None, notes=None, out=print) -> list:
         out(f"fitted kappa (seed Eq. 13), {g}: " + (format_fit(fits[g]) if g in fits
                                                    else "no shaken-down run with w > 0, no fit"))
     stem = folder.resolve().name
-    paths = save_figure(usd_figure(points, title), out_dir, f"{stem}_usd")
-    paths += save_figure(limits_figure(points, limits, title), out_dir, f"{stem}_limits")
-    paths += save_figure(ratcheting_figure(points, title), out_dir, f"{stem}_ratcheting")
+    paths = save_figure(usd_figure(points, title), out_dir, f"{stem}_usd", overwrite)
+    paths += save_figure(limits_figure(points, limits, title), out_dir, f"{stem}_limits", overwrite)
+    paths += save_figure(ratcheting_figure(points, title), out_dir, f"{stem}_ratcheting", overwrite)
     return paths

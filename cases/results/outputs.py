@@ -63,3 +63,13 @@ def default_output(scene_name: str, overrides=(), restart_step: int | None = Non
         digest = hashlib.sha1("\n".join(overrides).encode()).hexdigest()[:8]
         stem = f"{stem[:_MAX_STEM - 10]}__{digest}"
     return Path("results") / f"{stem}.h5"
+
+
+def free_name(path) -> Path:
+    """`path`, or the first of <stem>-2<suffix>, <stem>-3<suffix>, ... that does not exist (nor its lock file)."""
+    path = Path(path)
+    candidate, n = path, 1
+    while candidate.exists() or candidate.with_name(candidate.name + ".lock").exists():
+        n += 1
+        candidate = path.with_name(f"{path.stem}-{n}{path.suffix}")
+    return candidate

@@ -37,7 +37,7 @@ SUMMARY_UNITS = {
     "U_stat": "mm", "u_stat": "-", "U0": "mm", "a": "mm", "d": "mm", "p0": "MPa", "f_t": "-", "w": "-",
     "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
-    "springs": "-", "ds": "mm",
+    "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s",
 }
 
 #: Units of every stored dataset (its 'units' attribute in HDF5).
@@ -56,7 +56,8 @@ class RunResult:
     * `summary`: plain values (names and units: SUMMARY_UNITS), e.g. `summary["state"]` ('static', 'shakedown',
       'ratcheting', 'undecided', 'gross_sliding', 'incomplete'), `summary["u_sd"]`, `summary["U_sd"]` (mm);
       None where a value does not apply (u_sd of a ratcheting run).
-    * `status`: 'complete' or 'failed' (then `error` says why); `path`: the HDF5 file, None if not written.
+    * `status`: 'complete', 'failed' (then `error` says why) or 'incomplete' (a checkpoint of a run still going,
+      or killed); `path`: the HDF5 file, None if not written.
     """
 
     scene_toml: str
@@ -71,6 +72,8 @@ class RunResult:
     version: str = ""
     attrs: dict = field(default_factory=dict)   # further root attributes (restarted_from, restart_step, ...)
     path: Path | None = None
+    #: the gzip chunks of the snapshots as a run compressed them for its file (empty when read back)
+    snapshot_chunks: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def scene(self):

@@ -25,12 +25,13 @@ from rollcontact.solver.tangential import TangentialParams, kernels_cached
 PROGRESS_INTERVAL = 2.0
 
 
-def run_bem(scene: Scene, *, progress=None, restart=None) -> RunResult:
-    """Run `scene` on the boundary-element model; the result is not written (its path is None).
+def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None) -> RunResult:
+    """Run `scene` on the boundary-element model and return the result (written by the caller).
 
     progress: callable(message) for progress lines (None: silent). restart: a cases.run.restart.RestartSource to
-    continue from (its history and snapshots up to the restart step are part of the result). A scene whose grid
-    would exceed the element limit raises SceneError before any work.
+    continue from (its history and snapshots up to the restart step are part of the result). checkpoint: a
+    cases.run.checkpoint.Checkpoints that writes the finished steps as the run goes (at every period end and
+    every few seconds). A scene whose grid would exceed the element limit raises SceneError before any work.
     """
     t_start = time.perf_counter()
     scene_grid(scene)          # refuses a scene whose grid would exceed the element limit, before any work
@@ -41,7 +42,9 @@ def run_bem(scene: Scene, *, progress=None, restart=None) -> RunResult:
     tol, max_iter = scene.solver.tol, scene.solver.max_iter
     params = StepParams(NormalParams(tol=tol, max_iter=max_iter), TangentialParams(tol=tol, max_iter=max_iter),
                         coupling_tol=max(tol, 1e-10))
-    recorder = StepRecorder(grid, path, field_steps(scene, path), restart)
+    recorder = StepRecorder(grid, path, field_steps(scene, path), restart, compress=checkpoint is not None)
+    result = partial(scene, path, grid, recorder, t_start)
+    ends = set(path.period_ends().tolist())
     if progress:
         _announce(progress, grid, path, op, scene)
     status, error, state_label, interrupted = "complete", "", None, None
@@ -50,6 +53,8 @@ def run_bem(scene: Scene, *, progress=None, restart=None) -> RunResult:
         for rec in run_path(op, QuadricProfile(*scene.radii), path, Fn=scene.load.Fn, mu=scene.load.mu,
                             params=params, state=None if restart is None else restart.state):
             row = recorder.add(rec)
+            if checkpoint is not None:
+                checkpoint.after_step(rec.step in ends, result, len(recorder.stored))
             if progress and (time.perf_counter() - last_report > PROGRESS_INTERVAL or rec.step == path.n_steps - 1):
                 last_report = time.perf_counter()
                 progress(f"step {rec.step + 1}/{path.n_steps}  period {row['period']}/{scene.motion.periods}  "
@@ -64,14 +69,26 @@ def run_bem(scene: Scene, *, progress=None, restart=None) -> RunResult:
             recorder.trim_to_whole_steps()
     if scene.output.fields in ("reversals", "last"):
         recorder.keep_last_step_fields()
-    summary = summarise(scene, path, recorder.history, state_label, grid, time.perf_counter() - t_start)
-    if state_label == "gross_sliding":   # the step that found no equilibrium; the solver's message
-        summary.update(stopped_at_step=recorder.n_steps, state_message=error)
-    history, fields, stored = recorder.arrays()
-    result = RunResult(scene_toml=scene.to_toml(), status=status, error=error, x=grid.x, y=grid.y,
-                       history=history, fields=fields, field_steps=stored, summary=summary, version=version())
+    final = result(status=status, error=error, state_label=state_label)
+    if checkpoint is not None:
+        final.summary.update(checkpoints=checkpoint.written, checkpoint_time=checkpoint.seconds)
     if interrupted:
-        raise RunInterrupted(result) from interrupted
+        raise RunInterrupted(final) from interrupted
+    return final
+
+
+def partial(scene, path, grid, recorder, t_start):
+    """result(status, error, state_label, extra_snapshot=False) -> the RunResult of the steps recorded so far
+    (with extra_snapshot, also the fields of the last step when they are not stored: a checkpoint's restart
+    point), with the compressed snapshots for the writer in `snapshot_chunks`."""
+    def result(status, error="", state_label=None, extra_snapshot=False) -> RunResult:
+        summary = summarise(scene, path, recorder.history, state_label, grid, time.perf_counter() - t_start)
+        if state_label == "gross_sliding":   # the step that found no equilibrium; the solver's message
+            summary.update(stopped_at_step=recorder.n_steps, state_message=error)
+        history, fields, stored, chunks = recorder.arrays(extra_snapshot=extra_snapshot)
+        return RunResult(scene_toml=scene.to_toml(), status=status, error=error, x=grid.x, y=grid.y,
+                         history=history, fields=fields, field_steps=stored, summary=summary, version=version(),
+                         snapshot_chunks=chunks)
     return result
 
 

@@ -4,14 +4,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from rollcontact.cases.results.hdf5 import compress_snapshot
 from rollcontact.cases.results.run_result import FIELD_NAMES, HISTORY_NAMES
 
 
 class StepRecorder:
     """Per-step history and the snapshots of the steps in `snapshot_steps`; a restart starts from the stored history
-    and snapshots up to its step (`restart`: cases.run.restart.RestartSource)."""
+    and snapshots up to its step (`restart`: cases.run.restart.RestartSource). With `compress`, each snapshot is
+    also kept as the gzip chunks of the run file (`chunks`), compressed once however often the file is written."""
 
-    def __init__(self, grid, path, snapshot_steps, restart=None):
+    def __init__(self, grid, path, snapshot_steps, restart=None, compress=False):
         self.cell_area = grid.cell_area
         self.shape = grid.shape
         self.period = path.period
@@ -19,6 +21,8 @@ class StepRecorder:
         self.history = {k: [] for k in HISTORY_NAMES}
         self.fields = {k: [] for k in FIELD_NAMES}
         self.stored = []
+        self.compress = compress
+        self.chunks = {k: [] for k in FIELD_NAMES}
         self.last = None     # the record of the last step recorded in full
         if restart is not None:
             n = restart.step + 1
@@ -27,6 +31,8 @@ class StepRecorder:
             steps, fields = restart.snapshots()
             self.stored = [int(s) for s in steps]
             self.fields = {k: list(fields[k]) for k in FIELD_NAMES}
+            if compress:
+                self.chunks = {k: [compress_snapshot(v) for v in fields[k]] for k in FIELD_NAMES}
 
     @property
     def n_steps(self) -> int:
@@ -53,11 +59,11 @@ class StepRecorder:
     def snapshot(self, rec):
         """Store the fields of step `rec`."""
         self.stored.append(rec.step)
-        nr, tr = rec.normal, rec.tangential
-        for k, v in (("p", nr.pressure), ("u_z", nr.displacement), ("tau_x", tr.traction[0]),
-                     ("tau_y", tr.traction[1]), ("slip_x", tr.slip[0]), ("slip_y", tr.slip[1]),
-                     ("u_x", tr.displacement[0]), ("u_y", tr.displacement[1]), ("region", tr.region)):
-            self.fields[k].append(v.copy())
+        for k, v in field_values(rec).items():
+            v = np.array(v, dtype=field_dtype(k))
+            self.fields[k].append(v)
+            if self.compress:
+                self.chunks[k].append(compress_snapshot(v))
 
     def keep_last_step_fields(self):
         """A run that stopped early keeps the fields of its last finished step (what output.fields = 'reversals'
@@ -71,19 +77,48 @@ class StepRecorder:
         n = min(len(v) for v in self.history.values())
         for v in self.history.values():
             del v[n:]
-        m = min([len(self.stored)] + [len(v) for v in self.fields.values()])
+        m = min([len(self.stored)] + [len(v) for v in self.fields.values()]
+                + ([len(v) for v in self.chunks.values()] if self.compress else []))
         del self.stored[m:]
-        for v in self.fields.values():
+        for v in list(self.fields.values()) + list(self.chunks.values()):
             del v[m:]
         if self.last is not None and not (n and self.history["step"][-1] == self.last.step):
             self.last = None
 
-    def arrays(self) -> tuple[dict, dict, np.ndarray]:
-        """(history, fields, stored steps) as numpy arrays; fields of shape (snapshots, ny, nx)."""
+    def arrays(self, extra_snapshot=False) -> tuple[dict, dict, np.ndarray, dict]:
+        """(history, fields, stored steps, chunks) as numpy arrays; fields of shape (snapshots, ny, nx), chunks
+        their compressed snapshots (empty without `compress`). extra_snapshot: add the fields of the last
+        recorded step when they are not stored (the restart point of a checkpoint), without storing them; the
+        fields are then only placeholders of their shape and dtype (zero-copy views), since a checkpoint writes
+        the compressed chunks alone."""
         ny, nx = self.shape
+        stored, snaps, chunks = list(self.stored), {k: list(v) for k, v in self.fields.items()}, \
+            {k: list(v) for k, v in self.chunks.items()}
+        if extra_snapshot and self.last is not None and (not stored or stored[-1] != self.last.step):
+            stored.append(self.last.step)
+            for k, v in field_values(self.last).items():
+                v = np.asarray(v, dtype=field_dtype(k))
+                snaps[k].append(v)
+                if self.compress:
+                    chunks[k].append(compress_snapshot(v))
         fields = {}
-        for k, v in self.fields.items():
-            dtype = np.int8 if k == "region" else np.float64
-            fields[k] = np.array(v, dtype=dtype) if self.stored else np.zeros((0, ny, nx), dtype=dtype)
+        for k, v in snaps.items():
+            dtype = field_dtype(k)
+            if extra_snapshot and self.compress:
+                fields[k] = np.broadcast_to(np.zeros((), dtype), (len(stored), ny, nx))
+            else:
+                fields[k] = np.array(v, dtype=dtype) if stored else np.zeros((0, ny, nx), dtype=dtype)
         history = {k: np.asarray(v) for k, v in self.history.items()}
-        return history, fields, np.array(self.stored, dtype=np.int64)
+        return history, fields, np.array(stored, dtype=np.int64), (chunks if self.compress else {})
+
+def field_values(rec) -> dict:
+    """The stored fields of a step record (solver.rolling.stepping.StepRecord), name -> (ny, nx) array."""
+    nr, tr = rec.normal, rec.tangential
+    return {"p": nr.pressure, "u_z": nr.displacement, "tau_x": tr.traction[0], "tau_y": tr.traction[1],
+            "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": tr.displacement[0], "u_y": tr.displacement[1],
+            "region": tr.region}
+
+
+def field_dtype(name: str):
+    """The stored dtype of a field: int8 for the region codes, float64 otherwise."""
+    return np.int8 if name == "region" else np.float64

@@ -1,53 +1,119 @@
 """Run one scene: the single entry point of the CLI, the sweeps and the Python API (`rollcontact.run`).
 
 `run_scene` runs the scene's model ([solver] fidelity: the BEM model, cases.run.bem_run, or the 1-D MDR model,
-cases.run.mdr_run) and writes the result to HDF5 when given a file. It never loses finished work: a run that
-fails still writes the steps it completed, with status 'failed' and the error, and an interrupted one
-(Ctrl-C, SIGTERM through the CLI) writes them before RunInterrupted is raised; neither is written over a
-complete run file (it goes to <name>.partial.h5 beside it). Units: mm, N, MPa.
+cases.run.mdr_run) and, given a file, writes the result to HDF5. No result is lost and none is replaced unasked:
+
+* one writer per file: the run holds the output's lock (cases.results.lock) from start to end; a second writer is
+  refused at once, naming the holder;
+* an existing file is not replaced unless `overwrite` (the CLI's --overwrite), or when a restart continues an
+  incomplete run in its own file;
+* a BEM run writes checkpoints as it goes (cases.run.checkpoint): after kill -9 the file holds every finished
+  period with status 'incomplete';
+* a run that fails still writes the steps it completed (status 'failed'), and an interrupted one (Ctrl-C,
+  SIGTERM through the CLI) writes them before RunInterrupted is raised; neither is written over a complete run
+  file: they, and the checkpoints of a run that replaces one, go to <name>.partial.h5 beside it.
+
+Units: mm, N, MPa.
 """
 from __future__ import annotations
 
 from pathlib import Path
 import sys
 
-from rollcontact.cases.results.hdf5 import is_complete, write_run
+from rollcontact.bem.errors import OutputExistsError
+from rollcontact.bem.wisdom import process_exists
+from rollcontact.cases.results.hdf5 import is_complete, stored_summary, wait_for_replaced, write_run
+from rollcontact.cases.results.lock import OutputLock
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.run.bem_run import run_bem
+from rollcontact.cases.run.checkpoint import Checkpoints
 from rollcontact.cases.run.mdr_run import run_mdr
 from rollcontact.cases.scene.scene import Scene
 
 
-def run_scene(scene: Scene, out=None, *, progress=None, restart=None, attrs: dict | None = None) -> RunResult:
+def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart=None,
+              attrs: dict | None = None, label: str | None = None, lock: OutputLock | None = None) -> RunResult:
     """Run `scene`; write the result to `out` (HDF5) unless it is None. Returns the result (also on failure), its
     `path` the file written.
 
-    progress: callable(message) for progress lines (None: silent); restart: a cases.run.restart.RestartSource to
-    continue from (BEM runs); attrs: further root attributes of the file (a restart's source and step).
+    overwrite: replace an existing `out` (else OutputExistsError, before any work). progress: callable(message)
+    for progress lines (None: silent); restart: a cases.run.restart.RestartSource to continue from (BEM runs);
+    attrs: further root attributes of the file (a restart's source and step); label: how messages name `out`
+    (default '-o OUT'); lock: the output's lock when the caller holds it already (a sweep, which claims its runs).
+    OutputInUseError when another process writes `out`.
     """
+    if out is None:
+        return _run_model(scene, progress, restart, None)
+    out = Path(out)
+    label = label or f"-o {out}"
+    own = lock is None
+    lock = OutputLock(out, label=label).acquire() if own else lock
     try:
-        if scene.solver.fidelity == "mdr":
-            result = run_mdr(scene, progress=progress)
-        else:
-            result = run_bem(scene, progress=progress, restart=restart)
-    except RunInterrupted as exc:
-        _write(exc.result, out, attrs)
-        raise
-    _write(result, out, attrs)
+        target = _target(out, overwrite, restart, label)
+        remove_stale_temporaries(out)
+        checkpoints = Checkpoints(target, attrs) if scene.solver.fidelity == "bem" else None
+        try:
+            result = _run_model(scene, progress, restart, checkpoints)
+        except RunInterrupted as exc:
+            _finish(exc.result, out, target, attrs)
+            raise
+        _finish(result, out, target, attrs)
+    finally:
+        if own:
+            lock.release()
     return result
 
 
-def _write(result: RunResult, out, attrs):
+def _run_model(scene, progress, restart, checkpoints) -> RunResult:
+    if scene.solver.fidelity == "mdr":
+        return run_mdr(scene, progress=progress)
+    return run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints)
+
+
+def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
+    """Where the run writes until it completes: `out`, or <name>.partial.h5 beside a complete run file that it is
+    allowed to replace. OutputExistsError when `out` exists and may not be replaced."""
+    if not out.exists():
+        return out
+    resuming = (restart is not None and Path(restart.path).resolve() == out.resolve()
+                and restart.data.status != "complete")
+    if not (overwrite or resuming):
+        raise OutputExistsError(f"{label}: {describe_file(out)} exists; rollcontact does not replace a file unless "
+                                "asked: add --overwrite (overwrite=True in Python), or choose another name")
+    return out.with_name(out.stem + ".partial" + out.suffix) if is_complete(out) else out
+
+
+def describe_file(path: Path) -> str:
+    """What an existing output is, for messages: 'the complete run file X of scene S', 'the file X (not a run
+    file)', ..."""
+    if path.is_dir():
+        return f"the folder {path}"
+    stored = stored_summary(path)
+    if stored is None:
+        return f"the file {path} (not a run file)"
+    first = stored["scene"].splitlines()[0] if stored["scene"] else ""
+    scene = first.split("'")[1] if first.count("'") >= 2 else "?"
+    return f"the {stored['status'] or 'unfinished'} run file {path} (scene '{scene}')"
+
+
+def _finish(result: RunResult, out: Path, target: Path, attrs):
     result.attrs.update(attrs or {})
-    if out is None:
-        return
-    out = Path(out)
-    if result.status != "complete" and out.exists() and is_complete(out):
-        # a run that did not complete is not written over a complete run file (an interrupted rerun would
-        # otherwise replace a finished result with a part of one)
-        out = out.with_name(out.stem + ".partial" + out.suffix)
-    write_run(out, result)
-    result.path = out
+    path = out if result.status == "complete" else target
+    write_run(path, result, result.snapshot_chunks)
+    result.path = path
+    if path == out and target != out:
+        target.unlink(missing_ok=True)      # the checkpoints of the run that replaced a complete file
+    wait_for_replaced()
+
+
+def remove_stale_temporaries(out: Path):
+    """Delete the temporary files (.<name>.<pid>.tmp and .<name>.<pid>.old, cases.results.hdf5) that processes
+    writing `out` left behind when they were killed; those of live processes are kept."""
+    prefix = f".{out.name}."
+    for tmp in out.parent.glob(f".{out.name}.*"):
+        pid, _, suffix = tmp.name[len(prefix):].partition(".")
+        if suffix in ("tmp", "old") and pid.isdigit() and not process_exists(int(pid)):
+            tmp.unlink(missing_ok=True)
 
 
 def print_progress(message: str):

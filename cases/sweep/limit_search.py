@@ -16,7 +16,7 @@ from rollcontact.bem.errors import InputError, RollcontactError, SceneError
 
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.cases.results.hdf5 import stored_summary
-from rollcontact.cases.sweep.runner import execute_run, is_done
+from rollcontact.cases.sweep.runner import check_table_owner, execute_run, is_done, wait_for_claimed
 from rollcontact.cases.sweep.plan import (
     RANGE_DIGITS, PlannedRun, describe, build_scene, parse_vary, plan_sweep, run_file_name)
 from rollcontact.cases.sweep.table import write_summary
@@ -75,6 +75,8 @@ class _LimitSearch:
             summary = stored_summary(run.path)["summary"]
         else:
             result = execute_run(toml, scene.name, str(run.path))
+            if result["status"] == "claimed":       # another limit search on the folder computes this probe
+                result = wait_for_claimed(run)
             if result["status"] != "complete":
                 raise RollcontactError(f"probe {describe(name_values)} failed: {result['error']}")
             summary = result["summary"]
@@ -202,15 +204,17 @@ class LimitReport:
 
 
 def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=None, scheduler=None,
-                  progress=sys.stderr) -> LimitReport:
+                  overwrite=False, progress=sys.stderr) -> LimitReport:
     """Shakedown limit of the 3D model for every combination of the axes, by bisection on the run state.
 
     Varying motion.w (or motion.W) searches f_t,lim(w); varying load.ft (or load.Ft) searches w_lim(f_t);
     other varied keys (e.g. motion.angle) are carried along. Bisection to `tol` (in f_t or w units) from a
     bracket around the closed-form limits for kappa = 1 ... 1.5; an undecided probe is rerun with doubled
     periods at most twice, else the bracket is widened around it (status 'widened'). Probe runs are files
-    in OUTDIR/runs (named like sweep runs, so a rerun reuses them); results in OUTDIR/limits.{csv,h5}
-    (columns: LIMIT_COLUMNS), rewritten after each finished combination. Combinations run in parallel.
+    in OUTDIR/runs (named like sweep runs, so a rerun reuses them, and claimed through their locks, so that
+    searches started on one folder share the probes); results in OUTDIR/limits.{csv,h5} (columns: LIMIT_COLUMNS),
+    rewritten after each finished combination; the limits table of another search is not replaced unless
+    `overwrite`. Combinations run in parallel.
     """
     t0 = time.perf_counter()
     axes = [parse_vary(a) if isinstance(a, str) else a for a in axes]
@@ -237,6 +241,7 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
         raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
     attrs = {"base_scene": base.to_toml(), "overrides": list(overrides) or [""], "tol": float(tol),
              "searched": searched}
+    check_table_owner(outdir / "limits.h5", keys, attrs, overwrite)
     if progress is not None:
         print(f"limit-search: {len(plan)} combination(s), searching {searched} to tol = {tol:g}; probe runs in "
               f"{runs_dir}", file=progress, flush=True)

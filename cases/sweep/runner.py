@@ -42,15 +42,20 @@ import sys
 import time
 import tomllib
 
-from rollcontact.bem.wisdom import process_exists
-from rollcontact.bem.errors import InputError, RollcontactError
+import numpy as np
+
+from rollcontact.bem.errors import InputError, OutputExistsError, OutputInUseError, RollcontactError
 
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary
+from rollcontact.cases.results.lock import OutputLock, holder_of
 from rollcontact.cases.results.outputs import output_folder
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.cases.sweep.plan import PlannedRun, describe, parse_vary, plan_sweep
 from rollcontact.cases.sweep.table import write_summary
-from rollcontact.cases.sweep.workers import make_pool, raise_if_interrupted, completed, default_jobs, require_dask
+from rollcontact.cases.sweep.workers import completed, default_jobs, make_pool, raise_if_interrupted, require_dask
+
+#: seconds between two looks at a run that another process computes
+CLAIM_POLL = 0.5
 
 
 # ---------------------------------------------------------------------------------------- one run
@@ -69,22 +74,49 @@ def is_done(run: PlannedRun) -> bool:
 
 def execute_run(scene_toml: str, scene_name: str, out_path: str) -> dict:
     """Run one scene (given as TOML text, and its name, which the stored TOML's first line carries) to
-    `out_path`; never raises a RollcontactError.
+    `out_path`; never raises a RollcontactError. Used by the workers (picklable in and out).
 
-    Returns a dict with status, error and the run summary; used by the workers (picklable in and out).
-    A run that fails inside the stepping loop has a file with status 'failed' (written by run_scene);
-    one that fails before it (e.g. a grid above the element limit) has no file, only the returned error.
+    Returns a dict with status, error and the run summary. The run is claimed first through its file's lock: when
+    another process holds it (a second sweep on the same folder), status is 'claimed' and nothing is run; when
+    the file turns out complete for this scene once the lock is taken (that process finished it), its summary is
+    returned with `elsewhere` set. A run that fails inside the stepping loop has a file with status 'failed'
+    (written by run_scene); one that fails before it (e.g. a grid above the element limit) has no file.
     """
     from rollcontact.cases.run.scene_run import run_scene
     t0 = time.perf_counter()
+    lock = OutputLock(out_path, label=f"run file {out_path}")
     try:
+        lock.acquire()
+    except OutputInUseError as exc:
+        return {"status": "claimed", "error": str(exc), "summary": {}, "wall_time": 0.0}
+    try:
+        stored = stored_summary(out_path) if Path(out_path).exists() else None
+        if stored is not None and stored["status"] == "complete" and stored["scene"] == scene_toml:
+            return {"status": "complete", "error": "", "summary": stored["summary"], "wall_time": 0.0,
+                    "elsewhere": True}
         scene = Scene.from_toml_text(scene_toml, name=scene_name)
-        result = run_scene(scene, out_path)
+        result = run_scene(scene, out_path, overwrite=True, lock=lock)
     except RollcontactError as exc:
         return {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "summary": {},
                 "wall_time": time.perf_counter() - t0}
+    finally:
+        lock.release()
     return {"status": result.status, "error": result.error, "summary": dict(result.summary),
             "wall_time": result.wall_time}
+
+
+def wait_for_claimed(run: PlannedRun, poll: float = CLAIM_POLL) -> dict:
+    """The result of a run that another process claimed: waits until its file is complete, and runs it here when
+    that process lets go of it without completing it (it failed, or was killed)."""
+    while True:
+        if is_done(run):
+            return {"status": "complete", "error": "", "summary": stored_summary(run.path)["summary"],
+                    "elsewhere": True}
+        if holder_of(run.path) is None:
+            result = execute_run(run.scene_toml, run.scene_name, str(run.path))
+            if result["status"] != "claimed":
+                return result
+        time.sleep(poll)
 
 
 def _row(run: PlannedRun, result: dict, outdir: Path) -> dict:
@@ -151,6 +183,7 @@ class SweepReport:
     rows: list = field(default_factory=list)
     wall_time: float = 0.0
     interrupted: bool = False
+    elsewhere: int = 0      # runs another process (a second sweep on the folder) computed meanwhile
 
     @property
     def summary_csv(self) -> Path:
@@ -162,15 +195,18 @@ class SweepReport:
 
 
 
-def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=None,
+def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=None, overwrite=False,
               progress=sys.stderr) -> SweepReport:
     """Plan, skip what is done, run the rest in parallel, keep OUTDIR/summary.{csv,h5} up to date.
 
     base: the scene the axes modify; axes: list of Axis (or `--vary` strings); overrides: `--set` strings
     applied before the varied values; jobs: local worker processes (default: the core count; 1 = run in
-    this process); scheduler: Dask scheduler address (then `jobs` is ignored); progress: stream for progress
-    lines (None: silent). KeyboardInterrupt (Ctrl-C, or SIGTERM via the CLI) stops the workers, writes the
-    summary of what finished and is re-raised.
+    this process); scheduler: Dask scheduler address (then `jobs` is ignored); overwrite: replace the summary of
+    another sweep in OUTDIR (else OutputExistsError); progress: stream for progress lines (None: silent).
+    Every run is claimed through its file's lock, so that sweeps started on one folder share the work: a run that
+    another process computes is waited for at the end, and run here if that process lets go of it unfinished.
+    KeyboardInterrupt (Ctrl-C, or SIGTERM via the CLI) stops the workers, writes the summary of what finished
+    and is re-raised.
     """
     t0 = time.perf_counter()
     axes = [parse_vary(a) if isinstance(a, str) else a for a in axes]
@@ -183,6 +219,9 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     plan = plan_sweep(base, axes, outdir, overrides)
     keys = [a.key for a in axes]
     outdir = output_folder(outdir)
+    attrs = {"base_scene": base.to_toml(), "overrides": list(overrides) or [""],
+             "rollcontact_sweep": "one row per finished run; see cases.sweep.table.SUMMARY_COLUMNS"}
+    check_table_owner(outdir / "summary.h5", keys, attrs, overwrite)
     _remove_stale_temporaries(outdir, plan)
     rows, todo = {}, []
     for run in plan:
@@ -191,34 +230,41 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         else:
             todo.append(run)
     skipped = len(plan) - len(todo)
-    attrs = {"base_scene": base.to_toml(), "overrides": list(overrides) or [""],
-             "rollcontact_sweep": "one row per finished run; see cases.sweep.table.SUMMARY_COLUMNS"}
     write_summary(outdir, keys, rows.values(), attrs=attrs)
     if progress is not None:
-        threads = max(tomllib.loads(r.scene_toml)["solver"]["threads"] for r in plan)
-        where = f"Dask scheduler {scheduler}" if scheduler else f"{min(jobs, max(len(todo), 1))} process(es)"
-        print(f"sweep: {len(plan)} run(s) planned in {outdir}; {skipped} already complete, skipped; "
-              f"{len(todo)} to run on {where}", file=progress, flush=True)
-        if threads > 1 and jobs > 1 and not scheduler:
-            print(f"sweep: warning: [solver] threads = {threads} with {jobs} jobs oversubscribes the cores",
-                  file=progress, flush=True)
+        _announce(progress, plan, todo, skipped, outdir, jobs, scheduler)
     report = SweepReport(outdir, keys, len(plan), skipped, 0, 0)
     bar = _Progress(len(plan), skipped, progress)
     pool = make_pool(jobs, scheduler) if todo else None
+    claimed = []
+
+    def finish(run, result):
+        row = _row(run, result, outdir)
+        rows[run.index] = row
+        report.elsewhere += bool(result.get("elsewhere"))
+        report.ran += not result.get("elsewhere")
+        report.failed += row["status"] != "complete"
+        bar.update(row)
+        write_summary(outdir, keys, rows.values(), attrs=attrs)
+
     try:
         if todo:
             tasks = [(run, execute_run, (run.scene_toml, run.scene_name, str(run.path))) for run in todo]
             for run, result, failure in completed(pool, tasks):
                 if failure:
                     result = {"status": "failed", "error": failure, "summary": {}}
-                row = _row(run, result, outdir)
-                rows[run.index] = row
-                report.ran += 1
-                report.failed += row["status"] != "complete"
-                bar.update(row)
-                write_summary(outdir, keys, rows.values(), attrs=attrs)
+                if result["status"] == "claimed":
+                    claimed.append(run)
+                    continue
+                finish(run, result)
             pool.close()
         raise_if_interrupted()
+        if claimed and progress is not None:
+            print(f"sweep: {len(claimed)} run(s) are being computed by another process ({claimed[0].path.name}: "
+                  f"{holder_of(claimed[0].path) or 'just finished'}); waiting for them", file=progress, flush=True)
+        for run in claimed:
+            finish(run, wait_for_claimed(run))
+            raise_if_interrupted()
     except KeyboardInterrupt:
         report.interrupted = True
         if pool is not None:
@@ -236,17 +282,41 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     report.wall_time = time.perf_counter() - t0
     if progress is not None:
         print(f"sweep: done in {_hms(report.wall_time)}: {report.ran} run(s), {report.failed} failed, "
-              f"{report.skipped} skipped; summary in {outdir / 'summary.csv'}", file=progress, flush=True)
+              f"{report.skipped} skipped, {report.elsewhere} by another process; summary in "
+              f"{outdir / 'summary.csv'}", file=progress, flush=True)
     return report
 
 
+def _announce(progress, plan, todo, skipped, outdir, jobs, scheduler):
+    threads = max(tomllib.loads(r.scene_toml)["solver"]["threads"] for r in plan)
+    where = f"Dask scheduler {scheduler}" if scheduler else f"{min(jobs, max(len(todo), 1))} process(es)"
+    print(f"sweep: {len(plan)} run(s) planned in {outdir}; {skipped} already complete, skipped; "
+          f"{len(todo)} to run on {where}", file=progress, flush=True)
+    if threads > 1 and jobs > 1 and not scheduler:
+        print(f"sweep: warning: [solver] threads = {threads} with {jobs} jobs oversubscribes the cores",
+              file=progress, flush=True)
+
+
+def check_table_owner(table: Path, keys, attrs: dict, overwrite: bool):
+    """A sweep (or limit search) resumes in a folder whose summary table it wrote itself (the same varied keys,
+    base scene and overrides); the table of another one is not replaced unless `overwrite` (OutputExistsError
+    naming the file and --overwrite)."""
+    from rollcontact.cases.sweep.table import table_attrs
+    if overwrite or not table.exists():
+        return
+    stored = table_attrs(table)
+    mine = {"varied": list(keys), **{k: attrs[k] for k in ("base_scene", "overrides")}}
+    differs = [] if stored is None else [k for k, v in mine.items() if k in stored and
+                                         list(np.atleast_1d(stored[k])) != list(np.atleast_1d(v))]
+    if stored is None or differs:
+        what = ("is not a table of rollcontact" if stored is None else
+                f"belongs to another sweep (its {', '.join(differs)} differ)")
+        raise OutputExistsError(f"-o {table.parent}: {table} {what}; rollcontact does not replace it unless asked: "
+                                "add --overwrite, or choose another folder")
+
+
 def _remove_stale_temporaries(outdir: Path, plan):
-    """Delete temporary files a killed run left behind (`.<name>.<pid>.tmp`, see cases.results.hdf5.write_run)."""
-    names = {r.name for r in plan}
-    for tmp in outdir.glob(".*.tmp"):
-        parts = tmp.name[1:].rsplit(".", 2)
-        if len(parts) == 3 and parts[0] in names:
-            pid = parts[1]
-            if pid.isdigit() and process_exists(int(pid)):
-                continue
-            tmp.unlink(missing_ok=True)
+    """Delete the temporary files that killed runs of the plan left behind (cases.run.scene_run)."""
+    from rollcontact.cases.run.scene_run import remove_stale_temporaries
+    for run in plan:
+        remove_stale_temporaries(run.path)

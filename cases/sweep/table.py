@@ -104,3 +104,23 @@ def _csv_parse(k, v):
             pass
     return v
 
+
+
+def table_attrs(path) -> dict | None:
+    """The attributes of a summary table (<stem>.h5: varied keys, base_scene, overrides, ...) as Python values;
+    None when the file is not such a table."""
+    try:
+        with h5py.File(path, "r") as h5:
+            if "runs" not in h5:
+                return None
+            return {k: _text(v) for k, v in h5.attrs.items()}
+    except OSError:
+        return None
+
+
+def _text(v):
+    if isinstance(v, bytes):
+        return v.decode()
+    if isinstance(v, np.ndarray) and v.dtype.kind in "OSU":
+        return [x.decode() if isinstance(x, bytes) else str(x) for x in v]
+    return v

@@ -138,7 +138,7 @@ def test_sweep_kappa_excludes_limit_search_probes_and_says_so(runs, tmp_path, ca
     pts = read_folder(folder)
     assert sum(p.probe for p in pts) == 1 and len(pts) == 5              # the figures still show the probe
     shutil.rmtree(folder / "runs")
-    assert run_cli(["plot", str(folder), "-o", str(tmp_path / "figs")]) == 0
+    assert run_cli(["plot", str(folder), "-o", str(tmp_path / "figs"), "--overwrite"]) == 0
     assert "limit-search" not in capsys.readouterr().out
 
 

@@ -18,8 +18,8 @@ ROLLCONTACT = str(Path(sys.executable).with_name("rollcontact"))
 LONG = ["--set", "motion.periods=600"]  # 14402 steps at dx = 0.2 mm (about 40 s): far longer than the wait below
 
 
-def interrupted_run(out, sig, cwd):
-    proc = subprocess.Popen([ROLLCONTACT, "run", "-o", str(out), *LONG], cwd=cwd, stdout=subprocess.PIPE,
+def interrupted_run(out, sig, cwd, *extra):
+    proc = subprocess.Popen([ROLLCONTACT, "run", "-o", str(out), *LONG, *extra], cwd=cwd, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     for line in proc.stderr:                    # progress lines: the first "step k/N" comes after ~2 s of steps
         if line.startswith("step "):
@@ -55,7 +55,10 @@ def test_an_interrupted_rerun_does_not_replace_a_complete_run(tmp_path):
                           capture_output=True, text=True, timeout=300)
     assert done.returncode == 0 and is_complete(out), done.stderr
     before = hashlib.md5(out.read_bytes()).hexdigest()
-    code, _, stderr = interrupted_run(out, signal.SIGINT, tmp_path)
+    again = subprocess.run([ROLLCONTACT, "run", "-o", str(out), *LONG], cwd=tmp_path, capture_output=True, text=True,
+                           timeout=300)                                     # refused: the file exists
+    assert again.returncode == 2 and "--overwrite" in again.stderr
+    code, _, stderr = interrupted_run(out, signal.SIGINT, tmp_path, "--overwrite")
     assert code == 130
     assert hashlib.md5(out.read_bytes()).hexdigest() == before
     partial = tmp_path / "run.partial.h5"
