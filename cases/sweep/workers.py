@@ -9,6 +9,7 @@ import multiprocessing
 import os
 import re
 import signal
+import sys
 import threading
 import time
 
@@ -104,7 +105,23 @@ class _DaskPool:
         return self.client.submit(fn, *args, pure=False)
 
     def as_completed(self, futures):
-        return self._distributed.as_completed(futures)
+        """The futures as they complete; a worker that leaves the scheduler meanwhile (it died, or was stopped) is
+        reported on stderr: the scheduler runs its unfinished runs again on the other workers (each run claims its
+        file's lock anew, which the dead worker's process no longer holds, and starts from the beginning)."""
+        known = self._workers()
+        for future in self._distributed.as_completed(futures):
+            now = self._workers()
+            for address in sorted(known - now):
+                print(f"sweep: Dask worker {address} left the scheduler (it died or was stopped); the scheduler runs "
+                      "its unfinished runs again on the other workers", file=sys.stderr, flush=True)
+            known = now
+            yield future
+
+    def _workers(self) -> set:
+        try:
+            return set(self.client.scheduler_info()["workers"])
+        except Exception:            # a scheduler that does not answer: no report, the futures still complete
+            return set()
 
     def stop(self):
         self.client.close()

@@ -181,3 +181,44 @@ def test_figures_that_exist_are_not_replaced_unless_asked(tmp_path):
     assert md5(png) == before
     assert rollcontact("plot", str(run), "-o", str(tmp_path / "figs"), "--overwrite", cwd=tmp_path).returncode == 0
     assert not list((tmp_path / "figs").glob(".*.tmp*"))
+
+
+@pytest.mark.slow
+def test_a_sweep_on_dask_reports_a_worker_that_dies_and_finishes_every_run(tmp_path):
+    """A scheduler and two workers started as the README says (`dask scheduler`, `dask worker`), one worker killed
+    with SIGKILL while the sweep runs: the sweep says which worker left, the scheduler runs its runs again on the
+    other one, and every run ends complete (about 40 s)."""
+    pytest.importorskip("distributed", reason="optional extra 'dask' not installed")
+    dask = str(Path(sys.executable).parent / "dask")
+    info = tmp_path / "scheduler.json"
+    logs = open(tmp_path / "dask.log", "w")
+    scheduler = subprocess.Popen([dask, "scheduler", "--scheduler-file", str(info), "--port", "0",
+                                  "--dashboard-address", ":0", "--no-show"], stdout=logs, stderr=logs)
+    workers = []
+    try:
+        deadline = time.monotonic() + 60
+        while not info.exists() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        address = __import__("json").loads(info.read_text())["address"]
+        for _ in range(2):
+            workers.append(subprocess.Popen([dask, "worker", address, "--nthreads", "1", "--no-nanny",
+                                             "--no-dashboard"], stdout=logs, stderr=logs))
+        out = tmp_path / "sweep"
+        proc = subprocess.Popen([ROLLCONTACT, "sweep", "-o", str(out), "--scheduler", address, "--vary",
+                                 "load.ft=0.2,0.3,0.4,0.5,0.6,0.7", *COARSE, "--set", "motion.periods=12"],
+                                cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 120
+        while time.monotonic() < deadline and not list(out.glob("*.h5.lock")):
+            time.sleep(0.05)
+        workers[0].send_signal(signal.SIGKILL)
+        stdout, stderr = proc.communicate(timeout=300)
+        assert proc.returncode == 0, stderr
+        assert re.search(r"Dask worker \S+ left the scheduler", stderr), stderr
+        rows = (out / "summary.csv").read_text().splitlines()[1:]
+        assert len(rows) == 6 and all(",complete," in r for r in rows)
+        assert all(is_complete(p) for p in out.glob("*.h5") if p.name != "summary.h5")
+    finally:
+        for p in workers + [scheduler]:
+            p.kill()
+            p.wait()
+        logs.close()

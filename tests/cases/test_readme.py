@@ -55,7 +55,9 @@ def _walkthrough_commands() -> list[str]:
                 i += 1
                 cmd = cmd[:-1].rstrip() + " " + lines[i].strip()
             cmd = re.sub(r"\s+#.*$", "", cmd)
-            if not re.search(r"[\[|]|\b[A-Z]{3,}\b", cmd):
+            # the Dask example needs its scheduler and workers: test_no_result_lost starts them as shown and runs a
+            # sweep on them
+            if not re.search(r"[\[|]|\b[A-Z]{3,}\b|--scheduler", cmd):
                 joined.append(cmd)
         i += 1
     return joined
