@@ -23,6 +23,6 @@ def test_the_first_run_announces_the_compilation_and_later_runs_do_not(tmp_path)
     lines = first.stderr.splitlines()
     at = next(i for i, line in enumerate(lines) if NOTE in line)
     assert lines[at - 1].startswith("grid ") and not any(line.startswith("step ") for line in lines[:at])
-    again = subprocess.run(cmd, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600)
+    again = subprocess.run(cmd + ["--overwrite"], cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600)
     assert again.returncode == 0, again.stderr
     assert NOTE not in again.stderr, again.stderr
