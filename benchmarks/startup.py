@@ -55,7 +55,7 @@ def commands(repeats, cwd) -> dict:
 def paper_scenes(repeats, cwd) -> list:
     rows = []
     for setting, f_t, overrides in SCENES:
-        args = [str(BIN / "rollcontact"), "run", "-q", "-o", "run.h5", *overrides]
+        args = [str(BIN / "rollcontact"), "run", "-q", "-o", "run.h5", "--overwrite", *overrides]
         process_time(args, cwd)       # warm: numba's cache, FFTW wisdom
         procs, solves = [], []
         for _ in range(repeats):

@@ -21,7 +21,6 @@ import functools
 import math
 import os
 from pathlib import Path
-import shutil
 import threading
 import zlib
 
@@ -47,29 +46,17 @@ def version() -> str:
     return __version__
 
 
-def write_run(path, data: RunResult, chunks: dict | None = None, growable: bool = False) -> Path:
+def write_run(path, data: RunResult, chunks: dict | None = None) -> Path:
     """Write `data` to `path` atomically (a temporary file in the same folder, renamed into place); returns the
     path. chunks: {field name: [gzip-compressed (ny, nx) snapshots]} already compressed by the caller (a run
     compresses each snapshot once, when it is recorded); the other fields are compressed here. Every snapshot is
-    one gzip chunk either way. growable: history and fields extendable in place (`extend_run`; checkpoints)."""
+    one gzip chunk either way."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
         with h5py.File(tmp, "w") as h5:
-            h5.attrs["rollcontact_version"] = data.version or version()
-            h5.attrs["scene"] = data.scene_toml
-            _root_attrs(h5, data)
-            grid = h5.create_group("grid")
-            _dataset(grid, "x", data.x)
-            _dataset(grid, "y", data.y)
-            hist = h5.create_group("history")
-            for name, values in data.history.items():
-                values = np.asarray(values)
-                extra = dict(maxshape=(None,), chunks=(HISTORY_CHUNK,)) if growable else {}
-                _dataset(hist, name, values, **extra)
-            _write_fields(h5.create_group("fields"), data, chunks or {}, growable)
-            _summary(h5.create_group("summary"), data.summary)
+            fill_run(h5, data, chunks or {})
         _replace(tmp, path)
     finally:
         if tmp.exists():
@@ -77,40 +64,30 @@ def write_run(path, data: RunResult, chunks: dict | None = None, growable: bool 
     return path
 
 
-def extend_run(path, data: RunResult, chunks: dict, history_from: int, snapshots_from: int,
-               summary_in_file: dict | None = None) -> Path:
-    """Replace the growable run file `path` (written by write_run(growable=True) with the first `history_from`
-    steps and `snapshots_from` snapshots of `data`) by one holding all of `data`, atomically: a copy of the file
-    (a block copy, cheap) is extended in place and renamed into place. The snapshots from `snapshots_from` on are
-    (re)written from `chunks`; status, error, root attributes and the summary are replaced (summary_in_file: the
-    summary the file holds, when the caller knows it; else it is read)."""
+def fill_run(h5, data: RunResult, chunks: dict, growable: bool = False):
+    """Lay `data` out in the open, empty HDF5 file `h5` (the layout of the module docstring). growable: history
+    and fields extendable (cases.results.growing_file)."""
+    h5.attrs["rollcontact_version"] = data.version or version()
+    h5.attrs["scene"] = data.scene_toml
+    root_attrs(h5, data)
+    grid = h5.create_group("grid")
+    _dataset(grid, "x", data.x)
+    _dataset(grid, "y", data.y)
+    hist = h5.create_group("history")
+    for name, values in data.history.items():
+        _dataset(hist, name, np.asarray(values), **(dict(maxshape=(None,), chunks=(HISTORY_CHUNK,)) if growable
+                                                    else {}))
+    _write_fields(h5.create_group("fields"), data, chunks, growable)
+    write_summary_attrs(h5.create_group("summary").attrs, data.summary)
+
+
+def save_image(path, image: bytes) -> Path:
+    """Write the bytes of an HDF5 file image to `path` atomically (a temporary file, renamed into place)."""
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     try:
-        shutil.copyfile(path, tmp)
-        with h5py.File(tmp, "r+") as h5:
-            _root_attrs(h5, data)
-            hist = h5["history"].id
-            for name, values in data.history.items():
-                _append(h5py.h5d.open(hist, name.encode()), np.asarray(values), history_from)
-            flds = h5["fields"]
-            steps = np.asarray(data.field_steps, dtype=np.int64)
-            flds["step"].resize((len(steps),))
-            flds["step"][snapshots_from:] = steps[snapshots_from:]
-            for name, pieces in chunks.items():
-                ds = flds[name]
-                ds.resize((len(steps),) + ds.shape[1:])
-                for i in range(snapshots_from, len(steps)):
-                    ds.id.write_direct_chunk((i, 0, 0), pieces[i])
-            summ = h5["summary"].attrs
-            stored = ({k: _attr_value(k, v) for k, v in summary_in_file.items()} if summary_in_file is not None
-                      else {k: summ[k] for k in summ})
-            for key in [k for k in stored if k not in data.summary]:
-                del summ[key]
-            for key, value in data.summary.items():    # only what changed: an attribute write costs 0.1-0.2 ms
-                value = _attr_value(key, value)
-                if key not in stored or not _same_value(stored[key], value):
-                    summ[key] = value
+        with open(tmp, "wb") as fh:
+            fh.write(image)
         _replace(tmp, path)
     finally:
         if tmp.exists():
@@ -149,12 +126,12 @@ _pending: list = []
 
 
 def wait_for_replaced():
-    """Wait until the files replaced by `write_run` and `extend_run` are removed."""
+    """Wait until the files replaced by `write_run` and `save_image` are removed."""
     while _pending:
         _pending.pop().join()
 
 
-def _append(dataset, values: np.ndarray, start: int):
+def append(dataset, values: np.ndarray, start: int):
     """Extend a growable 1-D dataset to len(values) and write values[start:] (h5py's low-level calls: a third of
     the time of slicing, which matters when a checkpoint appends to 18 history datasets)."""
     n = len(values)
@@ -173,16 +150,23 @@ def _same_value(a, b) -> bool:
         return bool(np.array_equal(np.asarray(a), np.asarray(b)))
 
 
-def _root_attrs(h5, data: RunResult):
+def root_attrs(h5, data: RunResult):
+    """Status, error and the further root attributes of `data` on the open file `h5`."""
     h5.attrs["status"] = data.status
     h5.attrs["error"] = data.error
     for key, value in data.attrs.items():
         h5.attrs[key] = value
 
 
-def _summary(group, summary: dict):
+def write_summary_attrs(attrs, summary: dict, stored: dict | None = None):
+    """The summary as attributes (NaN / -1 where a value does not apply); with `stored` (what the attributes hold
+    now), only what changed is written and what went is deleted: an attribute write costs 0.1-0.2 ms."""
+    for key in [k for k in (stored or {}) if k not in summary]:
+        del attrs[key]
     for key, value in summary.items():
-        group.attrs[key] = _attr_value(key, value)
+        value = _attr_value(key, value)
+        if stored is None or key not in stored or not _same_value(_attr_value(key, stored[key]), value):
+            attrs[key] = value
 
 
 def compress_snapshot(values: np.ndarray) -> bytes:

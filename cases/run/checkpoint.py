@@ -4,25 +4,24 @@
 
 A checkpoint is written at the end of the loading phase and of every period, and within a period at most every
 CHECKPOINT_SECONDS of wall time; each holds the fields of its last step, the point a restart continues from. Each
-is a whole file written atomically (cases.results.hdf5.write_run: a temporary file, then a rename), so a reader or
-a crash never meets half a file; the field snapshots are compressed once, when they are recorded, so rewriting
-the file costs little (benchmarks/checkpoint.py).
+is a whole file written atomically (a temporary file, then a rename), so a reader or a crash never meets half a
+file. The file is kept in memory and extended by each checkpoint's new steps, and the field snapshots are
+compressed once, when they are recorded: a checkpoint costs a few milliseconds (benchmarks/checkpoint.py).
 """
 from __future__ import annotations
 
 from pathlib import Path
 import time
 
-from rollcontact.cases.results.hdf5 import extend_run, write_run
+from rollcontact.cases.results.growing_file import GrowingRunFile
 
 #: Longest wall time (s) between two checkpoints within a period.
 CHECKPOINT_SECONDS = 5.0
 
 
 class Checkpoints:
-    """Writes checkpoints of one run to `target` (root attributes `attrs` added to each). The first is a whole
-    growable file; each later one a copy of it extended by the new steps and snapshots (cases.results.hdf5.
-    extend_run), renamed into place."""
+    """Writes checkpoints of one run to `target` (root attributes `attrs` added to each), from a copy of the file
+    kept in memory and extended by the new steps and snapshots (cases.results.growing_file)."""
 
     def __init__(self, target, attrs=None, interval: float = CHECKPOINT_SECONDS):
         self.target = Path(target)
@@ -31,9 +30,8 @@ class Checkpoints:
         self.last = time.perf_counter()
         self.written = 0            # checkpoints written
         self.seconds = 0.0          # wall time spent writing them
-        self._steps = 0             # history rows in the file
-        self._snapshots = 0         # snapshots in the file that stay (not a checkpoint's restart point)
-        self._summary = None        # the summary in the file
+        self._file = None           # the GrowingRunFile
+        self._kept = 0              # snapshots in it that stay (not a checkpoint's restart point)
 
     def after_step(self, period_end: bool, result, stored: int):
         """Called after each finished step: `result(...)` builds the run so far (cases.run.bem_run.partial),
@@ -43,11 +41,18 @@ class Checkpoints:
             return
         run = result(status="incomplete", state_label="incomplete", extra_snapshot=True)
         run.attrs.update(self.attrs)
-        if self.written == 0:
-            write_run(self.target, run, run.snapshot_chunks, growable=True)
+        if self._file is None:
+            self._file = GrowingRunFile(run, run.snapshot_chunks)
         else:
-            extend_run(self.target, run, run.snapshot_chunks, self._steps, self._snapshots, self._summary)
-        self._steps, self._snapshots, self._summary = len(run.history["step"]), stored, run.summary
+            self._file.extend(run, run.snapshot_chunks, self._kept)
+        self._file.save(self.target)
+        self._kept = stored
         self.last = time.perf_counter()
         self.written += 1
         self.seconds += self.last - now
+
+    def close(self):
+        """Free the file kept in memory (the run's final file is written anew)."""
+        if self._file is not None:
+            self._file.close()
+            self._file = None

@@ -57,6 +57,9 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
         except RunInterrupted as exc:
             _finish(exc.result, out, target, attrs)
             raise
+        finally:
+            if checkpoints is not None:
+                checkpoints.close()
         _finish(result, out, target, attrs)
     finally:
         if own:
