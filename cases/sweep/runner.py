@@ -236,7 +236,6 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     report = SweepReport(outdir, keys, len(plan), skipped, 0, 0)
     bar = _Progress(len(plan), skipped, progress)
     pool = make_pool(jobs, scheduler) if todo else None
-    claimed = []
 
     def finish(run, result):
         row = _row(run, result, outdir)
@@ -248,17 +247,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         write_summary(outdir, keys, rows.values(), attrs=attrs)
 
     try:
-        if todo:
-            tasks = [(run, execute_run, (run.scene_toml, run.scene_name, str(run.path))) for run in todo]
-            for run, result, failure in completed(pool, tasks):
-                if failure:
-                    result = {"status": "failed", "error": failure, "summary": {}}
-                if result["status"] == "claimed":
-                    claimed.append(run)
-                    continue
-                finish(run, result)
-            pool.close()
-        raise_if_interrupted()
+        claimed = _run_here(pool, todo, finish)
         if claimed and progress is not None:
             print(f"sweep: {len(claimed)} run(s) are being computed by another process ({claimed[0].path.name}: "
                   f"{holder_of(claimed[0].path) or 'just finished'}); waiting for them", file=progress, flush=True)
@@ -285,6 +274,24 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
               f"{report.skipped} skipped, {report.elsewhere} by another process; summary in "
               f"{outdir / 'summary.csv'}", file=progress, flush=True)
     return report
+
+
+def _run_here(pool, todo, finish) -> list:
+    """Run `todo` on the pool, handing each result to finish(run, result); returns the runs that another process
+    had claimed (their files' locks were held), to be waited for."""
+    claimed = []
+    if todo:
+        tasks = [(run, execute_run, (run.scene_toml, run.scene_name, str(run.path))) for run in todo]
+        for run, result, failure in completed(pool, tasks):
+            if failure:
+                result = {"status": "failed", "error": failure, "summary": {}}
+            if result["status"] == "claimed":
+                claimed.append(run)
+            else:
+                finish(run, result)
+        pool.close()
+    raise_if_interrupted()
+    return claimed
 
 
 def _announce(progress, plan, todo, skipped, outdir, jobs, scheduler):
