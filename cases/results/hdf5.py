@@ -3,7 +3,8 @@
 Layout (public contract; later versions add to it, never rename):
 
     /                   attrs: rollcontact_version, scene (full scene as TOML text), status
-                        ('complete' or 'failed'), error (message, when failed); a restarted run also
+                        ('complete', 'failed', or 'incomplete': a checkpoint of a run going on or killed),
+                        error (message, when failed); a restarted run also
                         restarted_from (source file), restart_step, restart_overrides (the --set items)
     /grid/x, /grid/y    cell-centre coordinates (mm)
     /history/<name>     one value per step (names and units: cases.results.run_result.HISTORY_UNITS)
