@@ -65,9 +65,12 @@ def restart(path, *, step=None, overrides=None, output=None, overwrite=False, pr
     items = Scene.assignments(overrides) if overrides else []
     scene = continued_scene(source, items)
     out = check_output(output) if output is not None else None
-    if out is not None and out.resolve() == source.path.resolve() and source.data.status == "complete":
-        raise InputError(f"-o {out}: is the --restart file itself, a complete run; a continuation that fails would "
-                         "replace its later steps; write to another file")
+    if out is not None and out.resolve() == source.path.resolve():
+        last = int(source.data.history["step"][-1])
+        if source.data.status == "complete" or source.step != last:
+            why = ("a complete run" if source.data.status == "complete"
+                   else f"whose steps after {source.step} (up to {last}) it would replace")
+            raise InputError(f"-o {out}: is the --restart file itself, {why}; write the continuation to another file")
     attrs = dict(restarted_from=str(source.path.resolve()), restart_step=source.step,
                  restart_overrides=items or [""])
     progress = _progress(progress)

@@ -57,8 +57,8 @@ def _run(args) -> int:
     except api.RunInterrupted as exc:
         print(_interrupted_message(exc.result), file=sys.stderr)
         return 130
-    except KeyboardInterrupt:
-        print("rollcontact run: interrupted before the first step; nothing written", file=sys.stderr)
+    except KeyboardInterrupt:       # before the first step, or a second interrupt while the run was being written
+        print(_interrupted_early_message(out), file=sys.stderr)
         return 130
     if Path(result.path) != Path(out):
         print(f"the run did not complete: written to {result.path}, beside the complete run in {out}, "
@@ -67,15 +67,22 @@ def _run(args) -> int:
     return 0 if result.status == "complete" else 1
 
 
-def _restart_output(args, progress) -> Path:
-    """Without -o, a restart of an incomplete run (a checkpoint, a failed run) continues in its own file; one of a
-    complete run goes to a new file named after it and the step."""
+def _interrupted_early_message(out) -> str:
     from rollcontact.cases.results.hdf5 import stored_summary
+    stored = stored_summary(out) if Path(out).is_file() else None
+    if stored is None:
+        return "rollcontact run: interrupted before the first step; nothing written"
+    more = "" if stored["status"] == "complete" else f"; continue with: rollcontact run --restart {out}"
+    return f"rollcontact run: interrupted; {out} is left with status '{stored['status']}'{more}"
+
+
+def _restart_output(args, progress) -> Path:
+    """Without -o, a restart of a run that did not complete (a checkpoint, a failed run) from its last step continues
+    in its own file; any other goes to a new file named after it and the step."""
     from rollcontact.cases.run.restart import load_restart
-    stored = stored_summary(args.restart)
-    if stored is not None and stored["status"] != "complete":
-        return Path(args.restart)
     source = load_restart(args.restart, args.step)
+    if source.data.status != "complete" and source.step == int(source.data.history["step"][-1]):
+        return Path(args.restart)
     return _free_default(source.scene.name, args.overrides, source.step, progress)
 
 

@@ -57,20 +57,26 @@ class OutputLock:
     def held(self) -> bool:
         return self._fd is not None
 
-    def acquire(self) -> "OutputLock":
+    def acquire(self, wait: bool = False) -> "OutputLock":
+        """Take the lock; OutputInUseError naming the holder when a live process holds it (with `wait`, wait for
+        it instead: for short critical sections such as the check of a sweep's table)."""
         self.path.parent.mkdir(parents=True, exist_ok=True)
+        if not _has_flock(self.path.parent):
+            return self._acquire_by_link()
         for _ in range(100):   # the path may be replaced between open and flock by a releasing holder: retry
             fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
             try:
-                got = self._lock(fd)
+                got = self._lock(fd, wait)
             except BaseException:
                 os.close(fd)
                 raise
+            if got is None:
+                os.close(fd)
+                raise OutputInUseError(f"{self.label}: the file system of {self.path} stopped offering locks")
             if not got:
                 text = _read(fd)
                 os.close(fd)
-                raise OutputInUseError(f"{self.label}: is being written by {describe_holder(text)} (lock file "
-                                       f"{self.path}); wait for it to finish, or write to another file")
+                raise self._in_use(text)
             if _same_file(fd, self.path):
                 os.ftruncate(fd, 0)
                 os.pwrite(fd, (holder_text() + "\n").encode(), 0)
@@ -79,16 +85,58 @@ class OutputLock:
             os.close(fd)       # locked a file that its holder had just removed: take the new one
         raise OutputInUseError(f"{self.label}: could not take the lock file {self.path} (it keeps being replaced)")
 
-    def _lock(self, fd) -> bool:
+    def _in_use(self, text) -> OutputInUseError:
+        return OutputInUseError(f"{self.label}: is being written by {describe_holder(text)} (lock file {self.path});"
+                                " wait for it to finish, or write to another file")
+
+    @staticmethod
+    def _lock(fd, wait) -> bool | None:
+        """True: locked; False: held by another; None: this file system has no flock."""
         try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            fcntl.flock(fd, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
             return True
         except BlockingIOError:
             return False
         except OSError as exc:
-            if exc.errno not in (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS):
-                raise
-        return _content_says_free(_read(fd))      # no flock here: judge by the holder the file names
+            if exc.errno in (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS):
+                return None
+            raise
+
+    def _acquire_by_link(self) -> "OutputLock":
+        """Without flock: the lock file is created whole and atomically (a hard link of a file naming this process),
+        and a stale one (a dead process on this host) is renamed away before the next attempt. A holder on
+        another host cannot be checked: the message names the file to remove once that process is gone."""
+        mine = self.path.with_name(f".{self.path.name}.{os.getpid()}.{socket.gethostname()}.claim")
+        mine.write_text(holder_text() + "\n")
+        try:
+            for _ in range(100):
+                try:
+                    os.link(mine, self.path)
+                    self._fd = os.open(self.path, os.O_RDONLY)
+                    return self
+                except FileExistsError:
+                    text = self.path.read_text() if self.path.exists() else ""
+                busy = OutputInUseError(f"{self.label}: is being written by {describe_holder(text)} (lock file "
+                                        f"{self.path}, on a file system without flock: if that process is gone, "
+                                        "remove the lock file)")
+                if not _content_says_free(text):
+                    raise busy
+                stale = mine.with_suffix(".stale")
+                try:
+                    os.rename(self.path, stale)
+                except FileNotFoundError:
+                    continue          # another process took the stale lock away first: try again
+                if stale.read_text() != text:   # a live claim replaced the stale one meanwhile: give it back
+                    try:
+                        os.link(stale, self.path)
+                    except FileExistsError:
+                        pass
+                    stale.unlink(missing_ok=True)
+                    raise busy
+                stale.unlink(missing_ok=True)
+            raise OutputInUseError(f"{self.label}: could not take the lock file {self.path}")
+        finally:
+            mine.unlink(missing_ok=True)
 
     def release(self):
         """Remove the lock file and drop the lock (idempotent)."""
@@ -127,6 +175,26 @@ def holder_of(output) -> str | None:
             return None if _content_says_free(text) else describe_holder(text)
     finally:
         os.close(fd)
+
+
+_FLOCK = {}
+
+
+def _has_flock(folder: Path) -> bool:
+    """Whether flock works on files in `folder` (tried once per folder and process, on a probe file)."""
+    folder = Path(folder)
+    if folder not in _FLOCK:
+        probe = folder / f".rollcontact-flock-probe.{os.getpid()}"
+        fd = os.open(probe, os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            _FLOCK[folder] = True
+        except OSError as exc:
+            _FLOCK[folder] = exc.errno not in (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS)
+        finally:
+            os.close(fd)
+            probe.unlink(missing_ok=True)
+    return _FLOCK[folder]
 
 
 def _read(fd) -> str:

@@ -67,8 +67,8 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None) -> Ru
         error = "interrupted by the user" if interrupted else f"{type(exc).__name__}: {exc}"
         if interrupted:
             recorder.trim_to_whole_steps()
-    if scene.output.fields in ("reversals", "last"):
-        recorder.keep_last_step_fields()
+    if scene.output.fields in ("reversals", "last") or status != "complete":
+        recorder.keep_last_step_fields()      # what 'reversals' and 'last' promise, and what --restart needs
     final = result(status=status, error=error, state_label=state_label)
     if checkpoint is not None:
         final.summary.update(checkpoints=checkpoint.written, checkpoint_time=checkpoint.seconds)

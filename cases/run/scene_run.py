@@ -17,13 +17,17 @@ Units: mm, N, MPa.
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 from pathlib import Path
+import signal
 import sys
+import threading
 
 from rollcontact.bem.errors import OutputExistsError
 from rollcontact.bem.wisdom import process_exists
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary, wait_for_replaced, write_run
 from rollcontact.cases.results.lock import OutputLock
+from rollcontact.cases.results.outputs import free_name
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.run.bem_run import run_bem
 from rollcontact.cases.run.checkpoint import Checkpoints
@@ -40,17 +44,20 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
     for progress lines (None: silent); restart: a cases.run.restart.RestartSource to continue from (BEM runs);
     attrs: further root attributes of the file (a restart's source and step); label: how messages name `out`
     (default '-o OUT'); lock: the output's lock when the caller holds it already (a sweep, which claims its runs).
-    OutputInUseError when another process writes `out`.
+    OutputInUseError when another process writes `out` (or the partial file beside it). A symbolic link is
+    followed: the file it points to is the output.
     """
     if out is None:
         return _run_model(scene, progress, restart, None)
-    out = Path(out)
+    out = Path(out).resolve() if Path(out).is_symlink() else Path(out)
     label = label or f"-o {out}"
-    own = lock is None
-    lock = OutputLock(out, label=label).acquire() if own else lock
+    locks = [] if lock is not None else [OutputLock(out, label=label).acquire()]
     try:
         target = _target(out, overwrite, restart, label)
-        remove_stale_temporaries(out)
+        if target != out:
+            locks.append(OutputLock(target, label=f"{label} (its partial file {target.name})").acquire())
+        for path in (out, target):
+            remove_stale_temporaries(path)
         checkpoints = Checkpoints(target, attrs) if scene.solver.fidelity == "bem" else None
         try:
             result = _run_model(scene, progress, restart, checkpoints)
@@ -62,8 +69,8 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
                 checkpoints.close()
         _finish(result, out, target, attrs)
     finally:
-        if own:
-            lock.release()
+        for held in reversed(locks):
+            held.release()
     return result
 
 
@@ -74,8 +81,9 @@ def _run_model(scene, progress, restart, checkpoints) -> RunResult:
 
 
 def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
-    """Where the run writes until it completes: `out`, or <name>.partial.h5 beside a complete run file that it is
-    allowed to replace. OutputExistsError when `out` exists and may not be replaced."""
+    """Where the run writes until it completes: `out`, or, beside a complete run file that it is allowed to
+    replace, <name>.partial.h5 (or <name>.partial-2.h5, ... when that holds the result of another run).
+    OutputExistsError when `out` exists and may not be replaced."""
     if not out.exists():
         return out
     resuming = (restart is not None and Path(restart.path).resolve() == out.resolve()
@@ -83,7 +91,7 @@ def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
     if not (overwrite or resuming):
         raise OutputExistsError(f"{label}: {describe_file(out)} exists; rollcontact does not replace a file unless "
                                 "asked: add --overwrite (overwrite=True in Python), or choose another name")
-    return out.with_name(out.stem + ".partial" + out.suffix) if is_complete(out) else out
+    return free_name(out.with_name(out.stem + ".partial" + out.suffix)) if is_complete(out) else out
 
 
 def describe_file(path: Path) -> str:
@@ -100,13 +108,33 @@ def describe_file(path: Path) -> str:
 
 
 def _finish(result: RunResult, out: Path, target: Path, attrs):
+    """The final write: to `out` when the run completed (then the partial file this run wrote beside a complete one
+    goes), else to `target`. A second Ctrl-C or SIGTERM during it waits until it is done."""
     result.attrs.update(attrs or {})
     path = out if result.status == "complete" else target
-    write_run(path, result, result.snapshot_chunks)
-    result.path = path
-    if path == out and target != out:
-        target.unlink(missing_ok=True)      # the checkpoints of the run that replaced a complete file
-    wait_for_replaced()
+    with _deferred_interrupts():
+        try:
+            write_run(path, result, result.snapshot_chunks)
+            result.path = path
+            if path == out and target != out:
+                target.unlink(missing_ok=True)      # this run's checkpoints (the name was free when it started)
+        finally:
+            wait_for_replaced()
+
+
+@contextmanager
+def _deferred_interrupts():
+    """SIGINT and SIGTERM held back (delivered on exit) around a write that must not be cut short; a no-op outside
+    the main thread of the main interpreter, where signals are not delivered anyway."""
+    signals = {signal.SIGINT, signal.SIGTERM}
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, signals)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 def remove_stale_temporaries(out: Path):

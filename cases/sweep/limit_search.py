@@ -16,7 +16,7 @@ from rollcontact.bem.errors import InputError, RollcontactError, SceneError
 
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.cases.results.hdf5 import stored_summary
-from rollcontact.cases.sweep.runner import check_table_owner, execute_run, is_done, wait_for_claimed
+from rollcontact.cases.sweep.runner import claimed_table, execute_run, is_done, wait_for_claimed
 from rollcontact.cases.sweep.plan import (
     RANGE_DIGITS, PlannedRun, describe, build_scene, parse_vary, plan_sweep, run_file_name)
 from rollcontact.cases.sweep.table import write_summary
@@ -233,6 +233,7 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
     lo_x = _SEARCH_RANGE[searched][0]
     if scheduler:
         require_dask(scheduler)
+    outdir = Path(outdir).absolute()     # the workers (Dask's among them) may run in other folders
     plan = plan_sweep(base, axes, outdir, list(overrides) + [f"{searched}={lo_x}"])
     outdir = output_folder(outdir)
     runs_dir = outdir / "runs"
@@ -241,7 +242,8 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
         raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
     attrs = {"base_scene": base.to_toml(), "overrides": list(overrides) or [""], "tol": float(tol),
              "searched": searched}
-    check_table_owner(outdir / "limits.h5", keys, attrs, overwrite)
+    with claimed_table(outdir / "limits.h5", keys, attrs, overwrite):
+        write_summary(outdir, keys, [], stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)
     if progress is not None:
         print(f"limit-search: {len(plan)} combination(s), searching {searched} to tol = {tol:g}; probe runs in "
               f"{runs_dir}", file=progress, flush=True)

@@ -35,6 +35,7 @@ Units: the scene's (mm, N, MPa, degrees); f_t = Ft/(mu Fn), w = W/a, u = U/U0 (s
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 import os
 from pathlib import Path
@@ -54,8 +55,9 @@ from rollcontact.cases.sweep.plan import PlannedRun, describe, parse_vary, plan_
 from rollcontact.cases.sweep.table import write_summary
 from rollcontact.cases.sweep.workers import completed, default_jobs, make_pool, raise_if_interrupted, require_dask
 
-#: seconds between two looks at a run that another process computes
+#: seconds between two looks at a run that another process computes, and before saying whom a sweep waits for
 CLAIM_POLL = 0.5
+CLAIM_NOTICE = 60.0
 
 
 # ---------------------------------------------------------------------------------------- one run
@@ -105,10 +107,17 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str) -> dict:
             "wall_time": result.wall_time}
 
 
-def wait_for_claimed(run: PlannedRun, poll: float = CLAIM_POLL) -> dict:
+def wait_for_claimed(run: PlannedRun, poll: float = CLAIM_POLL, notice_after: float = CLAIM_NOTICE) -> dict:
     """The result of a run that another process claimed: waits until its file is complete, and runs it here when
-    that process lets go of it without completing it (it failed, or was killed)."""
+    that process lets go of it without completing it (it failed, or was killed). After `notice_after` seconds it
+    says on stderr whom it waits for (a holder on another host whose death this host cannot see, on a file
+    system without flock, needs its lock file removed by hand)."""
+    start = time.monotonic()
     while True:
+        if notice_after is not None and time.monotonic() - start > notice_after:
+            print(f"sweep: still waiting for {run.path.name}, claimed by {holder_of(run.path) or 'another process'}; "
+                  f"if that process is gone, remove {run.path.name}.lock", file=sys.stderr, flush=True)
+            notice_after = None
         if is_done(run):
             return {"status": "complete", "error": "", "summary": stored_summary(run.path)["summary"],
                     "elsewhere": True}
@@ -210,7 +219,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     """
     t0 = time.perf_counter()
     axes = [parse_vary(a) if isinstance(a, str) else a for a in axes]
-    outdir = Path(outdir)
+    outdir = Path(outdir).absolute()     # the workers (Dask's among them) may run in other folders
     if jobs is not None and int(jobs) < 1:
         raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
     jobs = default_jobs() if jobs is None else int(jobs)
@@ -221,8 +230,6 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     outdir = output_folder(outdir)
     attrs = {"base_scene": base.to_toml(), "overrides": list(overrides) or [""],
              "rollcontact_sweep": "one row per finished run; see cases.sweep.table.SUMMARY_COLUMNS"}
-    check_table_owner(outdir / "summary.h5", keys, attrs, overwrite)
-    _remove_stale_temporaries(outdir, plan)
     rows, todo = {}, []
     for run in plan:
         if is_done(run):
@@ -230,7 +237,8 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         else:
             todo.append(run)
     skipped = len(plan) - len(todo)
-    write_summary(outdir, keys, rows.values(), attrs=attrs)
+    with claimed_table(outdir / "summary.h5", keys, attrs, overwrite):
+        write_summary(outdir, keys, rows.values(), attrs=attrs)
     if progress is not None:
         _announce(progress, plan, todo, skipped, outdir, jobs, scheduler)
     report = SweepReport(outdir, keys, len(plan), skipped, 0, 0)
@@ -258,7 +266,8 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         report.interrupted = True
         if pool is not None:
             pool.stop()
-            _remove_stale_temporaries(outdir, plan)  # a terminated worker cannot clean up its partial file
+            if not scheduler:   # a terminated local worker cannot clean up; Dask's may live on other hosts
+                _remove_stale_temporaries(outdir, plan)
         for run in todo:  # runs whose file was complete before their result reached this process
             if run.index not in rows and is_done(run):
                 rows[run.index] = _stored_row(run, outdir)
@@ -304,22 +313,27 @@ def _announce(progress, plan, todo, skipped, outdir, jobs, scheduler):
               file=progress, flush=True)
 
 
-def check_table_owner(table: Path, keys, attrs: dict, overwrite: bool):
-    """A sweep (or limit search) resumes in a folder whose summary table it wrote itself (the same varied keys,
-    base scene and overrides); the table of another one is not replaced unless `overwrite` (OutputExistsError
-    naming the file and --overwrite)."""
+@contextmanager
+def claimed_table(table: Path, keys, attrs: dict, overwrite: bool):
+    """The check that a sweep (or limit search) may write the summary table `table`, held together with its first
+    write under the table's lock (so that two sweeps started at once cannot both pass it): it resumes in a folder
+    whose table it wrote itself (the same varied keys, base scene and overrides); the table of another one is not
+    replaced unless `overwrite` (OutputExistsError naming the file and --overwrite)."""
     from rollcontact.cases.sweep.table import table_attrs
-    if overwrite or not table.exists():
-        return
-    stored = table_attrs(table)
-    mine = {"varied": list(keys), **{k: attrs[k] for k in ("base_scene", "overrides")}}
-    differs = [] if stored is None else [k for k, v in mine.items() if k in stored and
-                                         list(np.atleast_1d(stored[k])) != list(np.atleast_1d(v))]
-    if stored is None or differs:
-        what = ("is not a table of rollcontact" if stored is None else
-                f"belongs to another sweep (its {', '.join(differs)} differ)")
-        raise OutputExistsError(f"-o {table.parent}: {table} {what}; rollcontact does not replace it unless asked: "
-                                "add --overwrite, or choose another folder")
+    lock = OutputLock(table, label=f"-o {table.parent}").acquire(wait=True)
+    try:
+        stored = table_attrs(table) if table.exists() and not overwrite else {}
+        mine = {"varied": list(keys), **{k: attrs[k] for k in ("base_scene", "overrides")}}
+        differs = [] if stored is None else [k for k, v in mine.items() if k in stored and
+                                             list(np.atleast_1d(stored[k])) != list(np.atleast_1d(v))]
+        if stored is None or differs:
+            what = ("is not a table of rollcontact" if stored is None else
+                    f"belongs to another sweep (its {', '.join(differs)} differ)")
+            raise OutputExistsError(f"-o {table.parent}: {table} {what}; rollcontact does not replace it unless "
+                                    "asked: add --overwrite, or choose another folder")
+        yield
+    finally:
+        lock.release()
 
 
 def _remove_stale_temporaries(outdir: Path, plan):

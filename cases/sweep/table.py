@@ -43,12 +43,15 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
     rows = sorted(rows, key=lambda r: r.get("index", 0))
     header = list(keys) + [c for c in columns if c not in keys]
     tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
-    with open(tmp, "w", newline="") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(header)
-        for r in rows:
-            writer.writerow([_csv_cell(r.get(c)) for c in header])
-    os.replace(tmp, outdir / f"{stem}.csv")
+    try:
+        with open(tmp, "w", newline="") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(header)
+            for r in rows:
+                writer.writerow([_csv_cell(r.get(c)) for c in header])
+        os.replace(tmp, outdir / f"{stem}.csv")
+    finally:
+        tmp.unlink(missing_ok=True)
     tmp = outdir / f".{stem}.h5.{os.getpid()}.tmp"
     try:
         with h5py.File(tmp, "w") as h5:

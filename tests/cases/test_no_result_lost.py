@@ -200,11 +200,13 @@ def test_a_sweep_on_dask_reports_a_worker_that_dies_and_finishes_every_run(tmp_p
         while not info.exists() and time.monotonic() < deadline:
             time.sleep(0.1)
         address = __import__("json").loads(info.read_text())["address"]
+        elsewhere = tmp_path / "workers"          # the workers' own folder: a relative -o must not land there
+        elsewhere.mkdir()
         for _ in range(2):
             workers.append(subprocess.Popen([dask, "worker", address, "--nthreads", "1", "--no-nanny",
-                                             "--no-dashboard"], stdout=logs, stderr=logs))
+                                             "--no-dashboard"], cwd=elsewhere, stdout=logs, stderr=logs))
         out = tmp_path / "sweep"
-        proc = subprocess.Popen([ROLLCONTACT, "sweep", "-o", str(out), "--scheduler", address, "--vary",
+        proc = subprocess.Popen([ROLLCONTACT, "sweep", "-o", "sweep", "--scheduler", address, "--vary",
                                  "load.ft=0.2,0.3,0.4,0.5,0.6,0.7", *COARSE, "--set", "motion.periods=12"],
                                 cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         deadline = time.monotonic() + 120
@@ -217,8 +219,72 @@ def test_a_sweep_on_dask_reports_a_worker_that_dies_and_finishes_every_run(tmp_p
         rows = (out / "summary.csv").read_text().splitlines()[1:]
         assert len(rows) == 6 and all(",complete," in r for r in rows)
         assert all(is_complete(p) for p in out.glob("*.h5") if p.name != "summary.h5")
+        assert not list(elsewhere.rglob("*.h5"))
     finally:
         for p in workers + [scheduler]:
             p.kill()
             p.wait()
         logs.close()
+
+
+def test_a_partial_file_of_another_run_is_neither_replaced_nor_removed(tmp_path):
+    """Beside a complete x.h5, a run with --overwrite writes its progress to x.partial.h5; when that name holds the
+    result of another run (here a complete one, e.g. the restart of a killed --overwrite run), it uses
+    x.partial-2.h5 and leaves x.partial.h5 as it was."""
+    out, partial = tmp_path / "x.h5", tmp_path / "x.partial.h5"
+    for path in (out, partial):
+        assert rollcontact("run", "-q", "-o", str(path), *COARSE, "--set", "motion.periods=1",
+                           cwd=tmp_path).returncode == 0
+    before = md5(partial)
+    done = rollcontact("run", "-q", "-o", str(out), "--overwrite", *COARSE, "--set", "motion.periods=2", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert md5(partial) == before and read_run(out).summary["steps"] > read_run(partial).summary["steps"]
+    assert not (tmp_path / "x.partial-2.h5").exists()          # the run's own partial file went when it completed
+
+
+def test_an_interrupted_run_without_stored_fields_can_still_be_restarted(tmp_path):
+    """output.fields = 'none' stores no snapshots, but a run that stops early keeps the fields of its last step
+    (what a restart continues from), as its checkpoints do."""
+    out = tmp_path / "nofields.h5"
+    proc = subprocess.Popen([ROLLCONTACT, "run", "-o", str(out), *COARSE, "--set", "motion.periods=200",
+                             "--set", "output.fields=none"], cwd=tmp_path, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    for line in proc.stderr:
+        if line.startswith("step "):
+            break
+    proc.send_signal(signal.SIGINT)
+    proc.communicate(timeout=120)
+    part = read_run(out)
+    assert part.status == "failed" and list(part.field_steps) == [part.history["step"][-1]]
+    more = rollcontact("run", "-q", "--restart", str(out), "--set", f"motion.periods={int(part.history['period'][-1]) + 1}",
+                       "-o", str(tmp_path / "more.h5"), cwd=tmp_path)
+    assert more.returncode == 0, more.stderr
+
+
+def test_two_different_sweeps_started_at_once_on_one_folder_one_is_refused(tmp_path):
+    out = tmp_path / "folder"
+    args = [ROLLCONTACT, "sweep", "-o", str(out), "--jobs", "1", "-q", "--vary", "load.ft=0.2,0.3",
+            "--set", "solver.fidelity=mdr"]
+    procs = [subprocess.Popen(args + ["--set", f"motion.periods={n}"], cwd=tmp_path, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True) for n in (2, 3)]
+    outs = [(p.wait(timeout=300), p.stderr.read()) for p in procs]
+    assert sorted(code for code, _ in outs) == [0, 2], outs
+    assert "belongs to another sweep" in next(err for code, err in outs if code == 2)
+
+
+def test_without_flock_the_lock_file_still_admits_one_writer(tmp_path):
+    """On a file system without flock the lock is a hard link made atomically: of two processes that race for it,
+    one gets it, ten times over."""
+    code = ("import errno, fcntl, sys, time\n"
+            "def none(*a, **k): raise OSError(errno.ENOLCK, 'no locks')\n"
+            "fcntl.flock = none\n"
+            "from rollcontact.cases.results.lock import OutputLock\n"
+            "try:\n    lock = OutputLock(sys.argv[1]).acquire()\nexcept Exception as exc:\n"
+            "    print(type(exc).__name__); sys.exit()\n"
+            "print('got', flush=True); time.sleep(0.3); lock.release()\n")
+    for trial in range(10):
+        path = str(tmp_path / f"race{trial}.h5")
+        procs = [subprocess.Popen([sys.executable, "-c", code, path], stdout=subprocess.PIPE, text=True)
+                 for _ in range(2)]
+        assert sorted(p.communicate(timeout=60)[0].strip() for p in procs) == ["OutputInUseError", "got"]
+    assert not [p for p in tmp_path.iterdir()]                  # no lock, claim or probe file left
