@@ -18,6 +18,7 @@ POSIX file systems. A run that fails still writes what it computed, with status 
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 import functools
 import math
 import os
@@ -54,14 +55,9 @@ def write_run(path, data: RunResult, chunks: dict | None = None) -> Path:
     one gzip chunk either way."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
+    with _replacing(path) as tmp:
         with h5py.File(tmp, "w") as h5:
             fill_run(h5, data, chunks or {})
-        _replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
     return path
 
 
@@ -85,15 +81,22 @@ def fill_run(h5, data: RunResult, chunks: dict, growable: bool = False):
 def save_image(path, image: bytes) -> Path:
     """Write the bytes of an HDF5 file image to `path` atomically (a temporary file, renamed into place)."""
     path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
+    with _replacing(path) as tmp:
         with open(tmp, "wb") as fh:
             fh.write(image)
+    return path
+
+
+@contextmanager
+def _replacing(path: Path):
+    """A temporary file beside `path` (.<name>.<pid>.tmp) to write, renamed over `path` when the block ends
+    without an error (`_replace`) and removed in every case."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        yield tmp
         _replace(tmp, path)
     finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+        tmp.unlink(missing_ok=True)
 
 
 def _replace(tmp: Path, path: Path):
