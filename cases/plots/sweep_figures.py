@@ -11,6 +11,8 @@ holds no run files. `limits.csv` (from `rollcontact limit-search`) is drawn when
 * <folder>_limits:     the (f_t, w) plane (seed Fig. 9 axes: w_lim versus f_t,lim): every run as a marker
                        (filled shakedown, open ratcheting), Eqs. 18-19 and the MDR limit, limit-search brackets.
 * <folder>_ratcheting: du per period versus f_t beyond the limit (seed Fig. 11) with Eqs. 20-21.
+* <folder>_angles:     with three or more alignments (a sweep over motion.angle): kappa, u_sd, du, the sideways
+                       walk and f_t,lim against the angle (cases.plots.angle_figures).
 Colours: the alignment (blue parallel, red perpendicular), darker for larger w; markers: o parallel,
 ^ perpendicular, D other angles, s the 1-D MDR model.
 """
@@ -32,6 +34,7 @@ from rollcontact.cases.results.hdf5 import stored_summary
 from rollcontact.cases.plots.common import (
     FIGSIZE, MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR, PlotError, save_figure, setting_colour, setting_of)
 from rollcontact.cases.scene.scene import Scene
+from rollcontact.cases.plots.angle_figures import angle_figure, angle_fit_text, study_angles
 
 MARKERS = {"parallel": "o", "perpendicular": "^"}
 CURVES = ((lim.KAPPA_PARALLEL, ":", PARALLEL_COLOUR, "κ = 1, W ∥ Ft (Eq. 15)"),
@@ -53,6 +56,8 @@ class Point:
     du: float | None
     u_stat: float | None
     probe: bool = False   # a limit-search probe (OUTDIR/runs/), not a run of the sweep itself
+    du_perp: float | None = None   # change of U_perp over the last period, / U0 (the sideways walk)
+    raw_angle: float | None = None  # motion.angle as given (deg), before folding to 0..90
 
     @property
     def setting(self) -> str:
@@ -93,11 +98,13 @@ def read_point(path) -> Point:
     attrs = stored["summary"]
     scene = Scene.from_toml_text(stored["scene"], name=Path(path).stem, run_limits=False)
     f_t = _num(attrs.get("f_t"))
+    walk, U0 = _num(attrs.get("dU_perp_per_period")), _num(attrs.get("U0"))
     return Point(file=Path(path).name, f_t=scene.f_t if f_t is None else f_t, w=_num(attrs.get("w")) or 0.0,
                  angle=_fold(scene.motion.angle),
                  mdr=scene.solver.fidelity == "mdr" or attrs.get("fidelity") == "mdr",
                  state=str(attrs.get("state") or "?"), u_sd=_num(attrs.get("u_sd")), du=_num(attrs.get("du")),
-                 u_stat=_num(attrs.get("u_stat")))
+                 u_stat=_num(attrs.get("u_stat")), du_perp=None if walk is None or not U0 else walk / U0,
+                 raw_angle=float(scene.motion.angle))
 
 
 def _points_from_csv(path) -> list[Point]:
@@ -378,4 +385,7 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
     paths = save_figure(usd_figure(points, title), out_dir, f"{stem}_usd", overwrite)
     paths += save_figure(limits_figure(points, limits, title), out_dir, f"{stem}_limits", overwrite)
     paths += save_figure(ratcheting_figure(points, title), out_dir, f"{stem}_ratcheting", overwrite)
+    if len(study_angles(points)) >= 3:
+        out(angle_fit_text(points, limits))
+        paths += save_figure(angle_figure(points, limits, title), out_dir, f"{stem}_angles", overwrite)
     return paths

@@ -256,6 +256,13 @@ def stored_summary(path) -> dict | None:
         return None
 
 
+def stored_history(path, names) -> dict:
+    """Some /history datasets of a run file (name -> array), without reading the fields; OSError or KeyError if
+    the file or a name is missing."""
+    with h5py.File(path, "r") as h5:
+        return {name: h5["history"][name][()] for name in names}
+
+
 def _dataset(group, name, values, **kwargs):
     ds = group.create_dataset(name, data=values, **kwargs)
     if name in UNITS:

@@ -12,11 +12,12 @@ from pathlib import Path
 import numpy as np
 
 #: /history: one value per step, name -> unit. W_x, W_y: sphere centre; U_x, U_y: rigid shift of the sphere
-#: relative to the substrate far field; F_x, F_y: tangential force; the iteration counts are FFT-convolution
+#: relative to the substrate far field; U_perp: its component across Ft (along Ft turned by +90 deg), the
+#: sideways walk of oblique rolling; F_x, F_y: tangential force; the iteration counts are FFT-convolution
 #: products of the step (all outer iterations of a coupled step summed).
 HISTORY_UNITS = {
     "step": "-", "period": "-", "W_x": "mm", "W_y": "mm", "approach": "mm", "Fn": "N", "contact_area": "mm^2",
-    "stick_area": "mm^2", "U_x": "mm", "U_y": "mm", "F_x": "N", "F_y": "N", "iterations": "-",
+    "stick_area": "mm^2", "U_x": "mm", "U_y": "mm", "U_perp": "mm", "F_x": "N", "F_y": "N", "iterations": "-",
     "normal_iterations": "-", "tangential_iterations": "-", "outer_iterations": "-", "residual": "-",
     "wall_time": "s",
 }
@@ -31,9 +32,11 @@ FIELD_UNITS = {
 FIELD_NAMES = tuple(FIELD_UNITS)
 
 #: /summary: name -> unit ('-': dimensionless, a count or text). Normalised values follow seed Eq. 9:
-#: f_t = Ft/(mu Fn), w = W/a, u = U/U0 with U0 = mu E* d/G*. Values that do not apply are None.
+#: f_t = Ft/(mu Fn), w = W/a, u = U/U0 with U0 = mu E* d/G*. U_perp: the final shift across Ft,
+#: dU_perp_per_period: its change over the last period. Values that do not apply are None.
 SUMMARY_UNITS = {
     "state": "-", "periods_to_shakedown": "-", "U_sd": "mm", "u_sd": "-", "dU_per_period": "mm", "du": "-",
+    "U_perp": "mm", "dU_perp_per_period": "mm",
     "U_stat": "mm", "u_stat": "-", "U0": "mm", "a": "mm", "d": "mm", "p0": "MPa", "f_t": "-", "w": "-",
     "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",

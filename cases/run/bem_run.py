@@ -42,7 +42,8 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None) -> Ru
     tol, max_iter = scene.solver.tol, scene.solver.max_iter
     params = StepParams(NormalParams(tol=tol, max_iter=max_iter), TangentialParams(tol=tol, max_iter=max_iter),
                         coupling_tol=max(tol, 1e-10))
-    recorder = StepRecorder(grid, path, field_steps(scene, path), restart, compress=checkpoint is not None)
+    recorder = StepRecorder(grid, path, field_steps(scene, path), restart, compress=checkpoint is not None,
+                            transverse=scene.transverse_direction)
     result = partial(scene, path, grid, recorder, t_start)
     ends = set(path.period_ends().tolist())
     if progress:

@@ -2,7 +2,7 @@
 
 The MDR model (solver.mdr) maps the rotationally symmetric, uncoupled contact onto a row of springs; it
 cannot tell rolling directions apart, so W_x, W_y and U_x, U_y are the 1-D values placed along the
-scene's rolling and force directions. The 1-D model has no 2-D fields: /fields holds no snapshots,
+scene's rolling and force directions; U_perp is 0 (the 1-D model cannot walk sideways). The 1-D model has no 2-D fields: /fields holds no snapshots,
 /grid/x holds the spring positions (mm) and /grid/y is [0]. contact_area and stick_area are the areas
 of circles whose diameters are the loaded and the stuck spring lengths (pi L^2/4); iterations are 0
 (both 1-D solves are exact). Units mm, N, MPa.
@@ -49,7 +49,7 @@ def run_mdr(scene: Scene, *, progress=None) -> RunResult:
                    approach=h["approach"], Fn=np.full(n, scene.load.Fn),
                    contact_area=math.pi * h["contact_length"] ** 2 / 4,
                    stick_area=math.pi * h["stick_length"] ** 2 / 4, U_x=h["U"] * e_f[0], U_y=h["U"] * e_f[1],
-                   F_x=h["Ft"] * e_f[0], F_y=h["Ft"] * e_f[1], iterations=zero.astype(int),
+                   U_perp=zero, F_x=h["Ft"] * e_f[0], F_y=h["Ft"] * e_f[1], iterations=zero.astype(int),
                    normal_iterations=zero.astype(int), tangential_iterations=zero.astype(int),
                    outer_iterations=zero.astype(int), residual=zero, wall_time=np.full(n, wall / max(n, 1)))
     assert set(history) == set(HISTORY_NAMES)

@@ -11,10 +11,12 @@ from rollcontact.cases.results.run_result import FIELD_NAMES, HISTORY_NAMES
 class StepRecorder:
     """Per-step history and the snapshots of the steps in `snapshot_steps`; a restart starts from the stored history
     and snapshots up to its step (`restart`: cases.run.restart.RestartSource). With `compress`, each snapshot is
-    also kept as the gzip chunks of the run file (`chunks`), compressed once however often the file is written."""
+    also kept as the gzip chunks of the run file (`chunks`), compressed once however often the file is written.
+    `transverse`: the unit vector across Ft (Scene.transverse_direction), along which U_perp is measured."""
 
-    def __init__(self, grid, path, snapshot_steps, restart=None, compress=False):
+    def __init__(self, grid, path, snapshot_steps, restart=None, compress=False, transverse=(0.0, 1.0)):
         self.cell_area = grid.cell_area
+        self.transverse = (float(transverse[0]), float(transverse[1]))
         self.shape = grid.shape
         self.period = path.period
         self.snapshot_steps = set(int(s) for s in snapshot_steps)
@@ -26,8 +28,12 @@ class StepRecorder:
         self.last = None     # the record of the last step recorded in full
         if restart is not None:
             n = restart.step + 1
+            stored = restart.data.history
             for k in HISTORY_NAMES:
-                self.history[k] = list(np.asarray(restart.data.history[k])[:n])
+                if k == "U_perp" and k not in stored:      # a file written before U_perp existed
+                    self.history[k] = list(self._across(np.asarray(stored["U_x"]), np.asarray(stored["U_y"]))[:n])
+                else:
+                    self.history[k] = list(np.asarray(stored[k])[:n])
             steps, fields = restart.snapshots()
             self.stored = [int(s) for s in steps]
             self.fields = {k: list(fields[k]) for k in FIELD_NAMES}
@@ -45,7 +51,8 @@ class StepRecorder:
         row = dict(step=rec.step, period=int(self.period[rec.step]), W_x=rec.centre[0], W_y=rec.centre[1],
                    approach=nr.approach, Fn=nr.force, contact_area=float(nr.contact.sum()) * dA,
                    stick_area=float((tr.region == 1).sum()) * dA, U_x=st.rigid_shift[0], U_y=st.rigid_shift[1],
-                   F_x=tr.force[0], F_y=tr.force[1], iterations=nr.iterations + tr.iterations,
+                   U_perp=self._across(st.rigid_shift[0], st.rigid_shift[1]), F_x=tr.force[0], F_y=tr.force[1],
+                   iterations=nr.iterations + tr.iterations,
                    normal_iterations=nr.iterations, tangential_iterations=tr.iterations,
                    outer_iterations=rec.outer_iterations, residual=max(nr.residual, tr.residual),
                    wall_time=rec.wall_time)
@@ -55,6 +62,11 @@ class StepRecorder:
             self.snapshot(rec)
         self.last = rec
         return row
+
+    def _across(self, U_x, U_y):
+        """The component of the shift (U_x, U_y) across Ft (mm)."""
+        ex, ey = self.transverse
+        return ex * U_x + ey * U_y
 
     def snapshot(self, rec):
         """Store the fields of step `rec`."""

@@ -119,6 +119,26 @@ def continued_scene(source: RestartSource, overrides) -> Scene:
     return scene
 
 
+def extension_source(path, scene: Scene) -> RestartSource | None:
+    """The complete run stored in `path`, as the start of `scene`, when `scene` is that run with more periods
+    (and nothing else changed but RESTART_SAFE_KEYS): continuing it gives `scene`'s run without redoing the
+    periods already run (a limit search extends a probe that is still undecided). None when it cannot: the file
+    is missing, not complete, stores no fields of its last step, or holds another scene."""
+    try:
+        source = load_restart(path)
+    except (InputError, OSError):
+        return None
+    if source.data.status != "complete" or source.step != int(np.asarray(source.data.history["step"])[-1]):
+        return None
+    if _state_part(source.scene) != _state_part(scene) or scene.motion.periods <= source.scene.motion.periods:
+        return None
+    try:
+        _check_path(source, scene)
+    except SceneError:
+        return None
+    return source
+
+
 def _check_path(source: RestartSource, scene: Scene):
     """The continued path passes through the restart step the same way, on the stored grid."""
     periods = scene.motion.periods

@@ -16,6 +16,10 @@ from rollcontact.solver.rolling.shakedown import classify
 from rollcontact.solver.rolling.stepping import LoadPath
 
 
+#: |U_perp| (mm) above which `rollcontact run` prints the sideways walk (the solver's round-off is far below it).
+SIDEWAYS_REPORTED = 1e-9
+
+
 def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:
     """Run summary: normalisations of seed Eq. 9 with the consistent constants (theory §8.2, P3)."""
     pair = scene.material_pair
@@ -24,6 +28,7 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     U0 = cm.U0
     e_f = np.array(scene.load_direction)
     U = np.asarray(history["U_x"]) * e_f[0] + np.asarray(history["U_y"]) * e_f[1]
+    U_perp = np.asarray(history["U_perp"])
     n_done = len(U)
     summary = dict(a=hertz.a, d=hertz.approach, p0=hertz.p0, U0=U0, f_t=scene.f_t,
                    w=scene.amplitude / hertz.a, W=scene.amplitude, dW_used=path.dW, nx=grid.nx, ny=grid.ny,
@@ -33,6 +38,8 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     n_ramp = scene.load.ramp_steps if scene.Ft > 0 else 0
     if n_done > n_ramp:
         summary.update(U_stat=float(U[n_ramp]), u_stat=float(U[n_ramp] / U0))
+    if n_done:
+        summary["U_perp"] = float(U_perp[-1])
     if state_label:
         summary["state"] = state_label
     elif path.period.max() == 0:
@@ -44,7 +51,8 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
             summary.update(state=cls.state, periods_to_shakedown=cls.periods_to_shakedown,
                            U_sd=float(U[ends[-1]]) if cls.state == "shakedown" else None,
                            u_sd=cls.u_sd if cls.state == "shakedown" else None,
-                           dU_per_period=float(U[ends[-1]] - U[ends[-2]]), du=cls.du)
+                           dU_per_period=float(U[ends[-1]] - U[ends[-2]]), du=cls.du,
+                           dU_perp_per_period=float(U_perp[ends[-1]] - U_perp[ends[-2]]))
         else:
             summary["state"] = "incomplete"
     return summary
@@ -82,6 +90,10 @@ def format_summary(result: RunResult) -> str:
     elif state in ("ratcheting", "undecided"):
         line += f"; dU per period = {s['dU_per_period']:.3e} mm, du = {s['du']:.3e} (w = {s['w']:.4g})"
     lines.append(line)
+    if s.get("U_perp") is not None and abs(s["U_perp"]) > SIDEWAYS_REPORTED:
+        walk = (f", {s['dU_perp_per_period']:.3e} mm in the last period" if s.get("dU_perp_per_period") is not None
+                else "")
+        lines.append(f"sideways (across Ft): U_perp = {s['U_perp']:.6f} mm{walk}")
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:

@@ -236,8 +236,15 @@ class Scene(SceneLimits):
 
     @property
     def load_direction(self) -> tuple[float, float]:
+        """Unit vector along Ft (load.load_angle from +x)."""
         t = math.radians(self.load.load_angle)
         return (math.cos(t), math.sin(t))
+
+    @property
+    def transverse_direction(self) -> tuple[float, float]:
+        """Unit vector across Ft: the load direction turned by +90 deg (the direction of U_perp)."""
+        ex, ey = self.load_direction
+        return (-ey, ex)
 
     @property
     def rolling_direction(self) -> tuple[float, float]:

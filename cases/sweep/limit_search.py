@@ -1,7 +1,7 @@
 """Shakedown-limit search of the 3D model (`rollcontact limit-search`; seed Eqs. 18-19, theory.md §8.4).
 
 For each combination of the varied keys: bisection in f_t (or in w when load.ft is varied) on the state of the
-run, shakedown below, ratcheting above, to a stated tolerance, from a bracket around the closed-form MDR limits.
+run, shakedown below, ratcheting above, to a stated tolerance, from a bracket around the kappa = 3/2 closed form.
 Probes are ordinary sweep run files (cases.sweep.runner), so a rerun resumes; results in OUTDIR/limits.{csv,h5}
 (cases.sweep.table). Units: f_t = Ft/(mu Fn), w = W/a (seed Eq. 9).
 """
@@ -13,9 +13,12 @@ import sys
 import time
 
 from rollcontact.bem.errors import InputError, RollcontactError, SceneError
+from rollcontact.solver.rolling.shakedown import geometric_decay
 
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.cases.results.hdf5 import stored_summary
+import numpy as np
+
+from rollcontact.cases.results.hdf5 import stored_history, stored_summary
 from rollcontact.cases.sweep.runner import claimed_table, execute_run, is_done, wait_for_claimed
 from rollcontact.cases.sweep.plan import (
     RANGE_DIGITS, PlannedRun, describe, build_scene, parse_vary, plan_sweep, run_file_name)
@@ -35,7 +38,7 @@ LIMIT_COLUMNS = ("index", "searched", "lower", "upper", "midpoint", "width", "st
 searched: 'f_t' (limit f_t,lim(w), when w is varied) or 'w' (limit w_lim(f_t), when f_t is varied);
 lower: largest searched value found to shake down; upper: smallest found to ratchet (or slide);
 midpoint, width = upper - lower; status: 'ok' (width <= tol), 'widened' (a probe stayed undecided after
-two doublings of the periods: the bracket is the neighbourhood around it), 'failed' (error says why);
+MAX_PERIODS_FACTOR times the scene's periods: the bracket is the neighbourhood around it), 'failed' (error says why);
 probes: runs made (or reused); undecided: searched values that stayed undecided (';'-separated);
 mdr_kappa=K: closed-form limit for kappa = K (seed Eqs. 18-19, or its inverse w_lim); f_t, w: the other,
 fixed, normalised coordinate of the search (f_t = Ft/(mu Fn), w = W/a)."""
@@ -43,8 +46,9 @@ fixed, normalised coordinate of the search (f_t = Ft/(mu Fn), w = W/a)."""
 _FT_KEYS = ("load.ft", "load.Ft")
 _W_KEYS = ("motion.w", "motion.W")
 _SEARCH_RANGE = {"load.ft": (0.01, 0.99), "motion.w": (0.02, 0.98)}
-_BRACKET_MARGIN = 0.05          # the first bracket is the closed forms' [kappa = 1.5, kappa = 1] range +- this
-_UNDECIDED_RETRIES = 2          # an undecided probe is rerun with 2x, then 4x the periods
+_BRACKET_MARGIN = 0.05          # first outward step when a side of the first bracket is not yet found
+_FIRST_HALF_WIDTH = 0.02        # the first bracket: the kappa = 3/2 closed form +- max(this, tol)
+MAX_PERIODS_FACTOR = 16         # an undecided probe is continued up to 16x the scene's periods (160 for the paper's)
 
 
 def _side(state: str) -> int:
@@ -61,7 +65,8 @@ class _LimitSearch:
         self.periods = build_scene(base, overrides, values).motion.periods
         self.probes, self.undecided = 0, []
 
-    def run(self, x, periods) -> str:
+    def run(self, x, periods, extend_from=None) -> tuple[str, Path]:
+        """State and run file of the probe at `x` with `periods` periods (extend_from: a shorter run of it)."""
         values = dict(self.values)
         values[self.searched] = float(f"{x:.{RANGE_DIGITS}g}")
         extra = [] if periods == self.periods else [f"motion.periods={periods}"]
@@ -74,7 +79,7 @@ class _LimitSearch:
         if is_done(run):
             summary = stored_summary(run.path)["summary"]
         else:
-            result = execute_run(toml, scene.name, str(run.path))
+            result = execute_run(toml, scene.name, str(run.path), None if extend_from is None else str(extend_from))
             if result["status"] == "claimed":       # another limit search on the folder computes this probe
                 result = wait_for_claimed(run)
             if result["status"] != "complete":
@@ -84,17 +89,41 @@ class _LimitSearch:
         if self.log:
             print(f"limit-search {describe(self.values)}: {self.searched}={x:.6g} periods={periods} -> {state}",
                   file=sys.stderr, flush=True)
-        return state
+        return state, run.path
 
     def classify(self, x) -> int:
-        periods = self.periods
-        for _ in range(_UNDECIDED_RETRIES + 1):
-            side = _side(self.run(x, periods))
-            if side != 0:
-                return side
-            periods *= 2
-        self.undecided.append(x)
-        return 0
+        """-1 below the limit (shakedown), +1 above (ratcheting, gross sliding), 0 undecided. Near the limit the
+        increments decay slowly (50-100 periods at w = 0.23, f_t = 0.66): an undecided probe is continued from its
+        last step (not run again) for the periods its geometric decay still needs to reach the shakedown
+        tolerance (solver.rolling.shakedown.geometric_decay), or as many again when the decay is not yet steady,
+        up to MAX_PERIODS_FACTOR times the scene's periods; still undecided then, it is left undecided."""
+        periods, previous = self.periods, None
+        cap = self.periods * MAX_PERIODS_FACTOR
+        while True:
+            state, path = self.run(x, periods, previous)
+            side = _side(state)
+            if side != 0 or periods >= cap:
+                break
+            decay = self.decay(path)
+            more = decay.periods_to_tol + 2 if decay is not None and decay.geometric else periods
+            if self.log and decay is not None:
+                print(f"limit-search {describe(self.values)}: {self.searched}={x:.6g} undecided after {periods} "
+                      f"periods, {decay.describe()}", file=sys.stderr, flush=True)
+            periods, previous = min(cap, periods + max(more, 2)), path
+        if side == 0:
+            self.undecided.append(x)
+        return side
+
+    def decay(self, path):
+        """geometric_decay of a probe's increments (U along Ft at the period ends, in U0)."""
+        stored = stored_summary(path)
+        scene = Scene.from_toml_text(stored["scene"], run_limits=False)
+        h = stored_history(path, ("U_x", "U_y", "period"))
+        e_f = scene.load_direction
+        U = h["U_x"] * e_f[0] + h["U_y"] * e_f[1]
+        period = np.asarray(h["period"])
+        ends = [int(np.flatnonzero(period == k)[-1]) for k in range(int(period.max()) + 1)]
+        return geometric_decay(np.diff(U[ends]) / stored["summary"]["U0"], tol=scene.solver.shakedown_tol)
 
     def bracket(self, guess_lo, guess_hi):
         """Find lo (below the limit) and hi (above it), starting from the closed-form guesses."""
@@ -177,7 +206,10 @@ def _limit_task(base_toml, base_name, overrides, values, searched, tol, runs_dir
         closed = {k: lim.w_lim(f, k) for k in LIMIT_KAPPAS}
     for k, label in kappas.items():
         row[label] = closed[k]
-    lo_guess, hi_guess = min(closed.values()) - _BRACKET_MARGIN, max(closed.values()) + _BRACKET_MARGIN
+    # the 3-D limits of the paper's sphere lie on the kappa = 3/2 closed form at both settings and every alignment
+    # measured (README; docs/alignment.md), so the search starts there and widens outwards when it has to
+    half = max(_FIRST_HALF_WIDTH, tol)
+    lo_guess, hi_guess = closed[1.5] - half, closed[1.5] + half
     try:
         lo, hi = search.bracket(lo_guess, hi_guess)
         lo, hi, status = search.bisect(lo, hi)
@@ -209,8 +241,9 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
 
     Varying motion.w (or motion.W) searches f_t,lim(w); varying load.ft (or load.Ft) searches w_lim(f_t);
     other varied keys (e.g. motion.angle) are carried along. Bisection to `tol` (in f_t or w units) from a
-    bracket around the closed-form limits for kappa = 1 ... 1.5; an undecided probe is rerun with doubled
-    periods at most twice, else the bracket is widened around it (status 'widened'). Probe runs are files
+    bracket of +- max(0.02, tol) around the closed-form limit for kappa = 3/2, widened outwards as needed; an undecided probe is continued for the periods
+    its geometric decay still needs (`_LimitSearch.classify`), up to MAX_PERIODS_FACTOR times the scene's periods,
+    else the bracket is widened around it (status 'widened'). Probe runs are files
     in OUTDIR/runs (named like sweep runs, so a rerun reuses them, and claimed through their locks, so that
     searches started on one folder share the probes); results in OUTDIR/limits.{csv,h5} (columns: LIMIT_COLUMNS),
     rewritten after each finished combination; the limits table of another search is not replaced unless

@@ -74,7 +74,7 @@ def is_done(run: PlannedRun) -> bool:
     return stored is not None and stored["scene"] == run.scene_toml
 
 
-def execute_run(scene_toml: str, scene_name: str, out_path: str) -> dict:
+def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: str | None = None) -> dict:
     """Run one scene (given as TOML text, and its name, which the stored TOML's first line carries) to
     `out_path`; never raises a RollcontactError. Used by the workers (picklable in and out).
 
@@ -83,7 +83,10 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str) -> dict:
     the file turns out complete for this scene once the lock is taken (that process finished it), its summary is
     returned with `elsewhere` set. A run that fails inside the stepping loop has a file with status 'failed'
     (written by run_scene); one that fails before it (e.g. a grid above the element limit) has no file.
+    extend_from: a complete run file of the same scene with fewer periods; the run continues it
+    (cases.run.restart.extension_source) instead of starting again, when it can.
     """
+    from rollcontact.cases.run.restart import extension_source
     from rollcontact.cases.run.scene_run import run_scene
     t0 = time.perf_counter()
     lock = OutputLock(out_path, label=f"run file {out_path}")
@@ -97,7 +100,11 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str) -> dict:
             return {"status": "complete", "error": "", "summary": stored["summary"], "wall_time": 0.0,
                     "elsewhere": True}
         scene = Scene.from_toml_text(scene_toml, name=scene_name)
-        result = run_scene(scene, out_path, overwrite=True, lock=lock)
+        source = extension_source(extend_from, scene) if extend_from else None
+        attrs = None if source is None else dict(restarted_from=str(Path(extend_from).resolve()),
+                                                 restart_step=source.step,
+                                                 restart_overrides=[f"motion.periods={scene.motion.periods}"])
+        result = run_scene(scene, out_path, overwrite=True, lock=lock, restart=source, attrs=attrs)
     except RollcontactError as exc:
         return {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "summary": {},
                 "wall_time": time.perf_counter() - t0}
@@ -133,7 +140,8 @@ def _row(run: PlannedRun, result: dict, outdir: Path) -> dict:
     row = dict(run.values)
     row.update(index=run.index, state=s.get("state") or "", status=result["status"],
                f_t=s.get("f_t"), w=s.get("w"), angle=None, u_sd=s.get("u_sd"), du=s.get("du"),
-               U_sd=s.get("U_sd"), dU_per_period=s.get("dU_per_period"), u_stat=s.get("u_stat"),
+               U_sd=s.get("U_sd"), dU_per_period=s.get("dU_per_period"), U_perp=s.get("U_perp"),
+               dU_perp_per_period=s.get("dU_perp_per_period"), u_stat=s.get("u_stat"),
                periods_to_shakedown=s.get("periods_to_shakedown"), steps=s.get("steps"),
                iterations=s.get("iterations"), wall_time=s.get("wall_time", result.get("wall_time")),
                file=os.path.relpath(run.path, outdir), error=result.get("error") or "")

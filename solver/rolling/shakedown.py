@@ -136,3 +136,52 @@ def gross_sliding(U_period_end, U0, message) -> Classification:
     last = float(du[-1]) if du.size else None
     return Classification("gross_sliding", None, None, last, None if last is None else last * U0, du,
                           f"gross sliding: {message}")
+
+
+@dataclass(frozen=True)
+class Decay:
+    """The decay of the per-period increments over the last `window` periods (see `geometric_decay`).
+
+    ratio: q, the geometric mean of the last `window` ratios du_k / du_{k-1};
+    spread: max - min of those ratios (0 for an exactly geometric decay);
+    geometric: all of them in (0, 1) and spread <= spread_tol: the increments fall by a steady factor q;
+    periods_to_tol: for a geometric decay, the periods still needed until |du| < tol at that rate, else None;
+    remaining: for a geometric decay, the drift still to come, |du_P| q / (1 - q) (in U/U0), else None.
+    """
+
+    ratio: float
+    spread: float
+    geometric: bool
+    periods_to_tol: int | None
+    remaining: float | None
+
+    def describe(self) -> str:
+        if not self.geometric:
+            return f"increments not decaying geometrically (ratios {self.ratio:.3f} +- {self.spread:.3f})"
+        return (f"geometric decay, ratio {self.ratio:.3f} per period (spread {self.spread:.3f}): about "
+                f"{self.periods_to_tol} more period(s) to tol, drift still to come {self.remaining:.2e} U0")
+
+
+def geometric_decay(increments, *, tol=DEFAULT_TOL, window=4, spread_tol=0.01) -> Decay | None:
+    """How the per-period increments du_k (U/U0, k = 1 .. P; Classification.increments) decay at the end: the
+    ratio q of consecutive increments over the last `window` periods, whether it is steady (a geometric decay
+    towards shakedown), and at that rate the periods still needed to bring |du| below `tol` and the drift still to
+    come. None with fewer than window + 1 increments.
+
+    Near the shakedown limit the ratio creeps towards 1 in steps (one element at a time stops slipping), so a
+    steady ratio is a forecast, not a proof: use it to decide how long to go on, and judge on the run itself.
+    """
+    du = np.asarray(increments, dtype=float).ravel()
+    if du.size < window + 1 or not np.all(np.isfinite(du)):
+        return None
+    tail = du[-(window + 1):]
+    if np.any(tail == 0.0) or np.any(np.sign(tail) != np.sign(tail[-1])):
+        return Decay(float("nan"), float("inf"), False, None, None)
+    r = tail[1:] / tail[:-1]
+    q = float(np.exp(np.mean(np.log(r))))
+    spread = float(r.max() - r.min())
+    if not (r.max() < 1.0 and spread <= spread_tol):
+        return Decay(q, spread, False, None, None)
+    last = abs(float(du[-1]))
+    more = 0 if last < tol else math.ceil(math.log(tol / last) / math.log(q))
+    return Decay(q, spread, True, more, last * q / (1.0 - q))

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from rollcontact.bem.errors import InputError
-from rollcontact.solver.rolling.shakedown import STATES, Classification, classify, gross_sliding
+from rollcontact.solver.rolling.shakedown import STATES, Classification, classify, geometric_decay, gross_sliding
 
 U0 = 0.8   # mm
 
@@ -76,3 +76,30 @@ def test_gross_sliding_is_an_allowed_state_set_by_the_caller():
 def test_bad_input_is_refused(U, U0_, kw, name):
     with pytest.raises(InputError, match=name):
         classify(U, U0_, **kw)
+
+
+# ------------------------------------------------------------------------------------------ geometric_decay
+def test_a_geometric_decay_gives_its_ratio_the_periods_to_tol_and_the_drift_still_to_come():
+    """du_k = 0.01 q^(k-1), q = 0.936 (the decay of the paper scene at f_t = 0.66, w = 0.23): the ratio exactly,
+    the periods until du < 1e-4 (du_P q^n < 1e-4) and the geometric tail sum du_P q / (1 - q)."""
+    q = 0.936
+    du = 0.01 * q ** np.arange(20)
+    d = geometric_decay(du)
+    assert d.geometric and d.ratio == pytest.approx(q, rel=1e-12) and d.spread < 1e-12
+    n = d.periods_to_tol
+    assert du[-1] * q ** n < 1e-4 <= du[-1] * q ** (n - 1)
+    assert d.remaining == pytest.approx(du[-1] * q / (1 - q), rel=1e-9)
+
+
+def test_increments_settling_to_a_constant_or_rising_ratios_are_not_a_geometric_decay():
+    """Ratcheting onto a constant increment (ratios creeping to 1) and a stepwise change of the ratio larger than
+    the spread tolerance are not forecast."""
+    assert not geometric_decay(0.002 + 0.01 * 0.8 ** np.arange(20)).geometric
+    steps = 0.01 * np.cumprod(np.r_[1.0, [0.90] * 8, [0.93] * 2])
+    assert not geometric_decay(steps).geometric
+    assert not geometric_decay(np.full(8, 0.01)).geometric             # ratio 1: no decay
+    assert not geometric_decay(0.01 * (-0.5) ** np.arange(8)).geometric  # alternating sign
+
+
+def test_too_few_increments_give_no_decay():
+    assert geometric_decay(0.01 * 0.5 ** np.arange(4)) is None
