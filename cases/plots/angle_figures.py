@@ -1,12 +1,13 @@
 """The alignment study of a sweep folder (`rollcontact plot OUTDIR` on a sweep over motion.angle): how the
 shakedown behaviour depends on the angle theta between Ft and the rolling direction (the seed's open question I).
 
-`<folder>_angles`, four panels against theta (folded to 0..90 deg: theta, -theta and 180 - theta are mirror
+`<folder>_angles`, six panels against theta (folded to 0..90 deg: theta, -theta and 180 - theta are mirror
 images of one another, theory §11.1):
 * kappa of seed Eq. 13 fitted per angle over its shaken-down runs (least squares, +- its standard error), with
   the interpolation kappa(theta) = kappa_par cos^2(theta) + kappa_perp sin^2(theta) between the fits at 0 and 90;
 * u_sd = U_sd/U0 per (f_t, w) of the shaken-down runs;
-* du = dU/U0 per period of the ratcheting runs (solid) and their sideways walk du_perp = dU_perp/U0 (dashed);
+* du = dU/U0 per period of the ratcheting runs, and their sideways walk du_perp = dU_perp/U0 per period;
+* the sideways offset U_perp/U0 at which the shaken-down runs come to rest;
 * f_t,lim from limits.csv (a limit search with motion.angle varied), bracket as error bar, against the
   angle-free bound 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, theory §8.4) and the seed's Eqs. 18-19 at 0 and 90 deg.
 `angle_fit_text` gives the same numbers as text, with the largest error of both closed forms.
@@ -98,16 +99,21 @@ def _by(points, key):
 
 
 def angle_figure(points, limits, title):
-    """The four panels of the module docstring."""
-    fig, axes = plt.subplots(2, 2, figsize=(11, 8.5), layout="constrained")
+    """The six panels of the module docstring."""
+    fig, axes = plt.subplots(2, 3, figsize=(15, 8.5), layout="constrained")
     theta = np.linspace(0, 90, 181)
     study = [p for p in _study(points) if not p.probe] or _study(points)
     ws = sorted({round(p.w, 6) for p in study})
     cmap = plt.get_cmap("viridis")
 
+    fts = sorted({round(p.f_t, 6) for p in study})
+
     def colour(w):
         k = ws.index(w) if w in ws else 0
         return cmap(0.15 + 0.7 * k / max(len(ws) - 1, 1))
+
+    def line(f_t):     # colour: w; line style: f_t
+        return ("-", "--", ":", "-.")[fts.index(f_t) % 4 if f_t in fts else 0]
 
     ax = axes[0, 0]
     fits = angle_kappas(points)
@@ -127,26 +133,35 @@ def angle_figure(points, limits, title):
     ax = axes[0, 1]
     for (f_t, w), sel in _by([p for p in study if p.state == "shakedown" and p.u_sd is not None],
                              lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
-        ax.plot([p.angle for p in sel], [p.u_sd for p in sel], "o-", color=colour(w), ms=4, lw=1)
+        ax.plot([p.angle for p in sel], [p.u_sd for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1)
         ax.annotate(f"f_t={f_t:g}, w={w:g}", (sel[-1].angle, sel[-1].u_sd), xytext=(3, 0),
                     textcoords="offset points", fontsize=6, color=colour(w))
     ax.set_ylabel("$u_{sd} = U_{sd}/U_0$ (shakedown runs)")
 
-    ax = axes[1, 0]
-    for (f_t, w), sel in _by([p for p in study if p.state == "ratcheting" and p.du is not None],
-                             lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
-        c = colour(w)
-        ax.plot([p.angle for p in sel], [p.du for p in sel], "o-", color=c, ms=4, lw=1,
-                label=f"f_t={f_t:g}, w={w:g}")
-        walk = [(p.angle, p.du_perp) for p in sel if p.du_perp is not None]
-        if walk:
-            ax.plot(*zip(*walk), "s--", color=c, ms=3, lw=0.8)
-    ax.axhline(0.0, color="k", lw=0.5)
-    ax.set_ylabel("per period: Δu along Ft (solid), Δu⊥ across Ft (dashed)")
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=7)
+    ratcheting = _by([p for p in study if p.state == "ratcheting" and p.du is not None],
+                     lambda p: (round(p.f_t, 6), round(p.w, 6)))
+    for ax, value, label in ((axes[1, 0], lambda p: p.du, "Δu = ΔU/U₀ per period along Ft (ratcheting runs)"),
+                             (axes[1, 1], lambda p: p.du_perp, "Δu⊥ = ΔU⊥/U₀ per period across Ft (ratcheting runs)")):
+        for (f_t, w), sel in ratcheting.items():
+            pts = [(p.angle, value(p)) for p in sel if value(p) is not None]
+            if pts:
+                ax.plot(*zip(*pts), "o", ls=line(f_t), color=colour(w), ms=4, lw=1, label=f"f_t={f_t:g}, w={w:g}")
+        ax.axhline(0.0, color="k", lw=0.5)
+        ax.set_ylabel(label)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
 
-    ax = axes[1, 1]
+    ax = axes[1, 2]
+    for (f_t, w), sel in _by([p for p in study if p.state == "shakedown" and p.u_perp is not None],
+                             lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
+        ax.plot([p.angle for p in sel], [p.u_perp for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1,
+                label=f"f_t={f_t:g}, w={w:g}")
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_ylabel("u⊥ = U⊥/U₀ where the shaken-down runs rest")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=6, ncol=2)
+
+    ax = axes[0, 2]
     rows = _limit_rows(limits)
     for w in sorted({r[1] for r in rows}):
         sel = sorted(r for r in rows if r[1] == w)
@@ -170,5 +185,6 @@ def angle_figure(points, limits, title):
         ax.set_xlim(-3, 93)
         ax.set_xticks(range(0, 91, 15))
         ax.grid(alpha=0.3)
-    fig.suptitle(f"Alignment study: {title} ({len(study)} runs, {len(study_angles(points))} angles)", fontsize=10)
+    fig.suptitle(f"Alignment study: {title} ({len(study)} runs, {len(study_angles(points))} angles; colour: w, "
+                 "line style: f_t)", fontsize=10)
     return fig

@@ -57,6 +57,7 @@ class Point:
     u_stat: float | None
     probe: bool = False   # a limit-search probe (OUTDIR/runs/), not a run of the sweep itself
     du_perp: float | None = None   # change of U_perp over the last period, / U0 (the sideways walk)
+    u_perp: float | None = None    # final U_perp / U0 (the sideways offset)
     raw_angle: float | None = None  # motion.angle as given (deg), before folding to 0..90
 
     @property
@@ -98,12 +99,13 @@ def read_point(path) -> Point:
     attrs = stored["summary"]
     scene = Scene.from_toml_text(stored["scene"], name=Path(path).stem, run_limits=False)
     f_t = _num(attrs.get("f_t"))
-    walk, U0 = _num(attrs.get("dU_perp_per_period")), _num(attrs.get("U0"))
+    walk, U0, side = _num(attrs.get("dU_perp_per_period")), _num(attrs.get("U0")), _num(attrs.get("U_perp"))
     return Point(file=Path(path).name, f_t=scene.f_t if f_t is None else f_t, w=_num(attrs.get("w")) or 0.0,
                  angle=_fold(scene.motion.angle),
                  mdr=scene.solver.fidelity == "mdr" or attrs.get("fidelity") == "mdr",
                  state=str(attrs.get("state") or "?"), u_sd=_num(attrs.get("u_sd")), du=_num(attrs.get("du")),
                  u_stat=_num(attrs.get("u_stat")), du_perp=None if walk is None or not U0 else walk / U0,
+                 u_perp=None if side is None or not U0 else side / U0,
                  raw_angle=float(scene.motion.angle))
 
 

@@ -130,3 +130,19 @@ def test_angle_sweep_and_limit_search_give_the_alignment_figure(base, tmp_path, 
     assert "theta = 45 deg: kappa = " in text and "f_t,lim = 1 - 1.5 w + 0.5 w^3: largest error" in text
     h = stored_history(out / report.rows[0]["file"], ("U_perp",))
     assert h["U_perp"].size > 0
+
+
+@pytest.mark.slow
+def test_a_slowly_decaying_probe_next_to_the_limit_is_continued_to_shakedown_not_called_ratcheting(base, tmp_path):
+    """Paper grid, W || Ft, w = 0.23, f_t = 0.66: just below the 3-D limit (in [0.660, 0.665], as an independent
+    CONTACT run finds), dU per period decays by a factor of only 0.89-0.94 per period, so after the scene's 10
+    periods it is still 2e-3 U0 and the run is undecided. The limit search continues the probe from its own file
+    (not from the start) until it has shaken down (|du| < 1e-4, about 40-45 periods)."""
+    from rollcontact.cases.sweep.limit_search import _LimitSearch
+    search = _LimitSearch(base, [], {"motion.w": 0.23}, "load.ft", 0.01, tmp_path, tmp_path, False)
+    assert search.classify(0.66) == -1
+    runs = sorted(tmp_path.glob("*.h5"), key=lambda p: p.stat().st_mtime)
+    assert len(runs) >= 2 and search.probes == len(runs)
+    final = read_run(runs[-1])
+    assert final.summary["state"] == "shakedown" and 10 < final.summary["periods_to_shakedown"] <= 160
+    assert final.attrs.get("restarted_from") == str(runs[-2].resolve())
