@@ -21,9 +21,9 @@ LONG = ["--set", "motion.periods=600"]  # 14402 steps at dx = 0.2 mm (about 40 s
 def interrupted_run(out, sig, cwd, *extra):
     proc = subprocess.Popen([ROLLCONTACT, "run", "-o", str(out), *LONG, *extra], cwd=cwd, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
-    for line in proc.stderr:                    # progress lines: the first "step k/N" comes after ~2 s of steps
-        if line.startswith("step "):
-            break
+    for line in proc.stderr:    # progress lines "step k/N ..." every 2 s; wait for one past the first rolling step
+        if line.startswith("step ") and int(line.split()[1].split("/")[0]) >= 3:   # (a slow step 0 on a busy
+            break                                                                   # machine prints "step 1/N")
     proc.send_signal(sig)
     stdout, stderr = proc.communicate(timeout=120)
     return proc.returncode, stdout, stderr
