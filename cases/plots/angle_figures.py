@@ -140,8 +140,9 @@ def angle_figure(points, limits, title):
 
     ratcheting = _by([p for p in study if p.state == "ratcheting" and p.du is not None],
                      lambda p: (round(p.f_t, 6), round(p.w, 6)))
-    for ax, value, label in ((axes[1, 0], lambda p: p.du, "Δu = ΔU/U₀ per period along Ft (ratcheting runs)"),
-                             (axes[1, 1], lambda p: p.du_perp, "Δu⊥ = ΔU⊥/U₀ per period across Ft (ratcheting runs)")):
+    panels = ((axes[1, 0], lambda p: p.du, "Δu = ΔU/U₀ per period along Ft (ratcheting runs)"),
+              (axes[1, 1], lambda p: p.du_perp, "Δu⊥ = ΔU⊥/U₀ per period across Ft (ratcheting runs)"))
+    for ax, value, label in panels:
         for (f_t, w), sel in ratcheting.items():
             pts = [(p.angle, value(p)) for p in sel if value(p) is not None]
             if pts:

@@ -2,8 +2,8 @@
 
 The MDR model (solver.mdr) maps the rotationally symmetric, uncoupled contact onto a row of springs; it
 cannot tell rolling directions apart, so W_x, W_y and U_x, U_y are the 1-D values placed along the
-scene's rolling and force directions; U_perp is 0 (the 1-D model cannot walk sideways). The 1-D model has no 2-D fields: /fields holds no snapshots,
-/grid/x holds the spring positions (mm) and /grid/y is [0]. contact_area and stick_area are the areas
+scene's rolling and force directions; U_perp is 0 (the 1-D model cannot walk sideways). The 1-D model has
+no 2-D fields: /fields holds no snapshots, /grid/x holds the spring positions (mm) and /grid/y is [0]. contact_area and stick_area are the areas
 of circles whose diameters are the loaded and the stuck spring lengths (pi L^2/4); iterations are 0
 (both 1-D solves are exact). Units mm, N, MPa.
 """

@@ -12,12 +12,12 @@ from pathlib import Path
 import sys
 import time
 
+import numpy as np
+
 from rollcontact.bem.errors import InputError, RollcontactError, SceneError
 from rollcontact.solver.rolling.shakedown import geometric_decay
 
 from rollcontact.cases.scene.scene import Scene
-import numpy as np
-
 from rollcontact.cases.results.hdf5 import stored_history, stored_summary
 from rollcontact.cases.sweep.runner import claimed_table, execute_run, is_done, wait_for_claimed
 from rollcontact.cases.sweep.plan import (
@@ -38,7 +38,8 @@ LIMIT_COLUMNS = ("index", "searched", "lower", "upper", "midpoint", "width", "st
 searched: 'f_t' (limit f_t,lim(w), when w is varied) or 'w' (limit w_lim(f_t), when f_t is varied);
 lower: largest searched value found to shake down; upper: smallest found to ratchet (or slide);
 midpoint, width = upper - lower; status: 'ok' (width <= tol), 'widened' (a probe stayed undecided after
-MAX_PERIODS_FACTOR times the scene's periods: the bracket is the neighbourhood around it), 'failed' (error says why);
+MAX_PERIODS_FACTOR times the scene's periods: the bracket is the neighbourhood around it), 'failed' (error says
+why);
 probes: runs made (or reused); undecided: searched values that stayed undecided (';'-separated);
 mdr_kappa=K: closed-form limit for kappa = K (seed Eqs. 18-19, or its inverse w_lim); f_t, w: the other,
 fixed, normalised coordinate of the search (f_t = Ft/(mu Fn), w = W/a)."""
@@ -241,13 +242,13 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
 
     Varying motion.w (or motion.W) searches f_t,lim(w); varying load.ft (or load.Ft) searches w_lim(f_t);
     other varied keys (e.g. motion.angle) are carried along. Bisection to `tol` (in f_t or w units) from a
-    bracket of +- max(0.02, tol) around the closed-form limit for kappa = 3/2, widened outwards as needed; an undecided probe is continued for the periods
-    its geometric decay still needs (`_LimitSearch.classify`), up to MAX_PERIODS_FACTOR times the scene's periods,
-    else the bracket is widened around it (status 'widened'). Probe runs are files
-    in OUTDIR/runs (named like sweep runs, so a rerun reuses them, and claimed through their locks, so that
-    searches started on one folder share the probes); results in OUTDIR/limits.{csv,h5} (columns: LIMIT_COLUMNS),
-    rewritten after each finished combination; the limits table of another search is not replaced unless
-    `overwrite`. Combinations run in parallel.
+    bracket of +- max(0.02, tol) around the closed-form limit for kappa = 3/2, widened outwards as needed; an
+    undecided probe is continued for the periods its geometric decay still needs (`_LimitSearch.classify`), up to
+    MAX_PERIODS_FACTOR times the scene's periods, else the bracket is widened around it (status 'widened'). Probe
+    runs are files in OUTDIR/runs (named like sweep runs, so a rerun reuses them, and claimed through their locks,
+    so that searches started on one folder share the probes); results in OUTDIR/limits.{csv,h5} (columns:
+    LIMIT_COLUMNS), rewritten after each finished combination; the limits table of another search is not replaced
+    unless `overwrite`. Combinations run in parallel.
     """
     t0 = time.perf_counter()
     axes = [parse_vary(a) if isinstance(a, str) else a for a in axes]

@@ -15,7 +15,8 @@ import numpy as np
 from rollcontact.cases.scene.scene import key_unit
 
 SUMMARY_COLUMNS = ("index", "state", "status", "f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period",
-                   "U_perp", "dU_perp_per_period", "u_stat", "periods_to_shakedown", "steps", "iterations", "wall_time", "file", "error")
+                   "U_perp", "dU_perp_per_period", "u_stat", "periods_to_shakedown", "steps", "iterations", "wall_time",
+                   "file", "error")
 """Columns of summary.csv / summary.h5 after the varied keys (one column per varied key, named by the key).
 
 index: position in the plan; state: static/shakedown/ratcheting/undecided/gross_sliding ('' if the run
