@@ -105,3 +105,24 @@ def test_bad_requests_are_refused_before_any_work(hertz_run, tmp_path, capsys):
     with OutputLock(hertz_run):
         assert cli(["stresses", str(hertz_run)]) == 2
     assert "is being written by" in capsys.readouterr().err
+
+
+def test_plot_draws_the_sections_and_the_maxima_of_a_run_with_stresses(hertz_run, tmp_path):
+    """`rollcontact plot RUN.h5` adds the x-z / y-z sections (maxima marked) and the maxima against the step as PNG
+    and PDF when the file holds /subsurface; the marked maximum is the section's (0.31 p0 below the centre)."""
+    import matplotlib.image as mpimg
+    from rollcontact.cases.plots.common import DPI
+    assert cli(["stresses", str(hertz_run), "-q"]) == 0
+    out = tmp_path / "plots"
+    assert cli(["plot", str(hertz_run), "-o", str(out)]) == 0
+    stem = hertz_run.stem
+    for name, size in ((f"{stem}_subsurface_step0", (13, 8.5)), (f"{stem}_subsurface_maxima", (9, 7))):
+        png = mpimg.imread(out / f"{name}.png")
+        assert png.shape[:2] == (round(size[1] * DPI), round(size[0] * DPI))
+        assert (out / f"{name}.pdf").stat().st_size > 1000
+    from rollcontact.cases.results.subsurface import block_maxima
+    m = block_maxima(hertz_run)
+    with h5py.File(hertz_run) as h5:
+        p0, a = h5["summary"].attrs["p0"], h5["summary"].attrs["a"]
+    assert m["tresca"]["value"][0] == pytest.approx(0.31 * p0, abs=0.005 * p0)
+    assert abs(m["tresca"]["z"][0] - 0.48 * a) <= 0.065 * a and abs(m["tresca"]["x"][0]) < 1e-9
