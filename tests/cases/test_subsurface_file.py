@@ -108,13 +108,17 @@ def test_bad_requests_are_refused_before_any_work(hertz_run, tmp_path, capsys):
 
 
 def test_plot_draws_the_sections_and_the_maxima_of_a_run_with_stresses(hertz_run, tmp_path):
-    """`rollcontact plot RUN.h5` adds the x-z / y-z sections (maxima marked) and the maxima against the step as PNG
-    and PDF when the file holds /subsurface; the marked maximum is the section's (0.31 p0 below the centre)."""
+    """The figures `rollcontact plot RUN.h5` adds when the file holds /subsurface (plot_run calls plot_subsurface; the
+    whole plot command is not redrawn here, its other figures take 10 s): the x-z / y-z sections with the maxima
+    marked and the maxima against the step, as PNG and PDF; the marked maximum is 0.31 p0 below the centre."""
     import matplotlib.image as mpimg
-    from rollcontact.cases.plots.common import DPI
+    from rollcontact.cases.plots.common import DPI, open_run
+    from rollcontact.cases.plots.subsurface_figures import plot_subsurface
     assert cli(["stresses", str(hertz_run), "-q"]) == 0
     out = tmp_path / "plots"
-    assert cli(["plot", str(hertz_run), "-o", str(out)]) == 0
+    notes = []
+    paths = plot_subsurface(open_run(hertz_run), out, step=5, notes=notes)
+    assert len(paths) == 4 and "no subsurface stresses at step 5" in notes[0]
     stem = hertz_run.stem
     for name, size in ((f"{stem}_subsurface_step0", (13, 8.5)), (f"{stem}_subsurface_maxima", (9, 7))):
         png = mpimg.imread(out / f"{name}.png")
