@@ -12,15 +12,21 @@ stress is a sum of third derivatives of Phi and z times fourth ones, and d^2/dXd
 integrand. With s = rho + z, L_X = ln(X + rho), L_Y = ln(Y + rho), i_X = 1/(X + rho), i_Y = 1/(Y + rho) and
 T_X = atan(XY(X^2 + Y^2) / (s (X^2 rho + z Y^2))) (= atan(Y/X) - atan(zY/(X rho))), T_Y = T_X with X <-> Y:
 
-    pressure p    xx  -2 T_X - 4 nu T_Y - 2 z X i_Y / rho          qx  xx  4 L_Y + 4 nu Y/s + 2 z Y/(rho s) + 2 z^2 i_Y/rho
-                  yy  -2 T_Y - 4 nu T_X - 2 z Y i_X / rho              yy  4 nu (L_Y - Y/s) - 2 z Y/(rho s)
-                  zz  -2 (T_X + T_Y) + 2 z (X i_Y + Y i_X)/rho         zz  -2 z^2 i_Y/rho
-                  yz  -2 z^2 i_X/rho                                   yz  -2 z/rho
-                  xz  -2 z^2 i_Y/rho                                   xz  -2 (T_X + T_Y) - 2 z X i_Y/rho
-                  xy  -2 (1 - 2 nu) ln s - 2 z/rho                     xy  2 L_X - 4 nu X/s - 2 z X/(rho s)
+    pressure p   xx  -2 T_X - 4 nu T_Y - 2 z X i_Y / rho
+                 yy  -2 T_Y - 4 nu T_X - 2 z Y i_X / rho
+                 zz  -2 (T_X + T_Y) + 2 z (X i_Y + Y i_X)/rho
+                 yz  -2 z^2 i_X/rho
+                 xz  -2 z^2 i_Y/rho
+                 xy  -2 (1 - 2 nu) ln s - 2 z/rho
+    shear q_x    xx  4 L_Y + 4 nu Y/s + 2 z Y/(rho s) + 2 z^2 i_Y/rho
+                 yy  4 nu (L_Y - Y/s) - 2 z Y/(rho s)
+                 zz  -2 z^2 i_Y/rho
+                 yz  -2 z/rho
+                 xz  -2 (T_X + T_Y) - 2 z X i_Y/rho
+                 xy  2 L_X - 4 nu X/s - 2 z X/(rho s)
 
-and q_y as q_x with x <-> y (X <-> Y). The derivation (potentials of Johnson's eq. 3.19 with F1 = G1 = H1 = Phi,
-Hooke's law, Phi_zz = -Phi_xx - Phi_yy) was checked term by term against adaptive quadrature of the
+and q_y as q_x with x <-> y (X <-> Y). The derivation (the displacements of Johnson's §3.2 from the potentials H1 = Phi for p, F1 = Phi for
+q_x, G1 = Phi for q_y; Hooke's law; Phi_zz = -Phi_xx - Phi_yy) was checked term by term against adaptive quadrature of the
 Boussinesq-Cerruti point-load stresses over an element (1e-9 relative); tests/bem/test_subsurface.py repeats it.
 Stresses depend on the substrate's Poisson ratio nu only (not on its modulus).
 
