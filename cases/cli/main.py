@@ -72,7 +72,7 @@ def _run(args) -> int:
     print(format_summary(result))
     if args.stresses and result.path is not None and len(result.field_steps):
         from rollcontact.cases.cli.stresses_cmd import report
-        from rollcontact.cases.results.subsurface import add_subsurface
+        from rollcontact.cases.run.stresses import add_subsurface
         print(report(add_subsurface(result.path, steps="all", depths=depths,
                                     progress=print if progress else None), result.path))
     return 0 if result.status == "complete" else 1
@@ -84,7 +84,7 @@ def _stress_depths(args):
         return None
     if not args.stresses:
         raise InputError("--depths applies only with --stresses (the subsurface stresses of the stored steps)")
-    from rollcontact.cases.results.subsurface import parse_depths
+    from rollcontact.cases.run.stresses import parse_depths
     return parse_depths(args.depths)
 
 

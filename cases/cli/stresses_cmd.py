@@ -18,7 +18,7 @@ def add_depth_options(parser):
 
 
 def stresses_handler(args) -> int:
-    from rollcontact.cases.results.subsurface import add_subsurface, parse_depths
+    from rollcontact.cases.run.stresses import add_subsurface, parse_depths
     from rollcontact.bem.errors import InputError
     if args.all_steps and args.step:
         raise InputError("give either --step N or --all-steps, not both")

@@ -26,10 +26,9 @@ def _section_panel(ax, fig, h, z, values, p0, xlabel):
     ax.set_ylabel("depth z (mm)")
     k = np.unravel_index(int(np.argmax(values)), values.shape)
     vmax = float(values[k])
-    ax.plot(h[k[1]], z[k[0]], marker="x", color="red", markersize=10, markeredgewidth=2)
-    ax.annotate(f"max {vmax:.4g} MPa = {vmax / p0:.3f} p0\nat {h[k[1]]:.3g} mm, z = {z[k[0]]:.3g} mm",
-                (h[k[1]], z[k[0]]), xytext=(8, 8), textcoords="offset points", color="white", fontsize=9,
-                bbox=dict(boxstyle="round", fc="0.15", alpha=0.7))
+    ax.plot(h[k[1]], z[k[0]], marker="x", color="red", markersize=10, markeredgewidth=2, clip_on=False)
+    ax.text(0.02, 0.04, f"max {vmax:.4g} MPa = {vmax / p0:.3f} p0 at {h[k[1]]:.3g} mm, z = {z[k[0]]:.3g} mm (x)",
+            transform=ax.transAxes, color="white", fontsize=9, bbox=dict(boxstyle="round", fc="0.15", alpha=0.7))
     fig.colorbar(mesh, ax=ax, label="MPa")
 
 
@@ -58,6 +57,8 @@ def maxima_figure(view: RunView):
     right = top.secondary_yaxis("right", functions=(lambda v: v / view.p0, lambda v: v * view.p0))
     right.set_ylabel("over p0")
     bottom.set_ylabel("depth of the maximum (mm)")
+    deepest = max(max(m[name]["z"].max() for name in ("von_mises", "tresca")), 0.05 * float(m["depths"][-1]))
+    bottom.set_ylim(-0.05 * deepest, 1.1 * deepest)
     bottom.set_xlabel("step")
     bottom.invert_yaxis()
     top.legend(fontsize=9)

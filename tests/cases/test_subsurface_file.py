@@ -10,7 +10,8 @@ from rollcontact.cases.cli.main import main as cli
 from rollcontact.cases.results.hdf5 import read_run
 from rollcontact.cases.results.lock import OutputLock
 from rollcontact.cases.results.run_result import SUBSURFACE_UNITS
-from rollcontact.cases.results.subsurface import default_depths, read_subsurface
+from rollcontact.cases.results.subsurface import read_subsurface
+from rollcontact.cases.run.stresses import default_depths
 from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import Scene
 
