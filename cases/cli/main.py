@@ -70,12 +70,21 @@ def _run(args) -> int:
         print(f"the run did not complete: written to {result.path}, beside the complete run in {out}, "
               "which is kept", file=sys.stderr)
     print(format_summary(result))
-    if args.stresses and result.path is not None and len(result.field_steps):
-        from rollcontact.cases.cli.stresses_cmd import report
-        from rollcontact.cases.run.stresses import add_subsurface
-        print(report(add_subsurface(result.path, steps="all", depths=depths,
-                                    progress=print if progress else None), result.path))
+    if args.stresses and result.path is not None:
+        _add_stresses(result, depths, progress)
     return 0 if result.status == "complete" else 1
+
+
+def _add_stresses(result, depths, progress):
+    """`run --stresses`: the subsurface stresses of every stored step, added to the run's file when it ends."""
+    if not len(result.field_steps):
+        print("--stresses: the run stored no field snapshots (output.fields = 'none', or the MDR model); no "
+              "subsurface stresses computed", file=sys.stderr)
+        return
+    from rollcontact.cases.cli.stresses_cmd import report
+    from rollcontact.cases.run.stresses import add_subsurface
+    print(report(add_subsurface(result.path, steps="all", depths=depths, progress=print if progress else None),
+                 result.path))
 
 
 def _stress_depths(args):
