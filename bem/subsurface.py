@@ -25,9 +25,10 @@ T_X = atan(XY(X^2 + Y^2) / (s (X^2 rho + z Y^2))) (= atan(Y/X) - atan(zY/(X rho)
                  xz  -2 (T_X + T_Y) - 2 z X i_Y/rho
                  xy  2 L_X - 4 nu X/s - 2 z X/(rho s)
 
-and q_y as q_x with x <-> y (X <-> Y). The derivation (the displacements of Johnson's §3.2 from the potentials H1 = Phi for p, F1 = Phi for
-q_x, G1 = Phi for q_y; Hooke's law; Phi_zz = -Phi_xx - Phi_yy) was checked term by term against adaptive quadrature of the
-Boussinesq-Cerruti point-load stresses over an element (1e-9 relative); tests/bem/test_subsurface.py repeats it.
+and q_y as q_x with x <-> y (X <-> Y). The derivation (the displacements of Johnson's §3.2 from the potentials
+H1 = Phi for p, F1 = Phi for q_x, G1 = Phi for q_y; Hooke's law; Phi_zz = -Phi_xx - Phi_yy) was checked term by term
+against adaptive quadrature of the Boussinesq-Cerruti point-load stresses over an element (1e-9 relative);
+tests/bem/test_subsurface.py repeats it with Gauss-Legendre quadrature.
 Stresses depend on the substrate's Poisson ratio nu only (not on its modulus).
 
 Conventions (theory.md §0): p presses on the substrate, (q_x, q_y) = (tau_x, tau_y) act on it; z is the depth

@@ -145,8 +145,8 @@ def main(argv=None):
               f"{paper['add_subsurface_compute_s'] * 1e3:.0f} ms); cold process {paper['cold_process_s']:.2f} s",
               flush=True)
         memory = memory_block(tmp)
-        print(f"256 x 256 x 64: peak resident {memory['compute_peak_mb']:.0f} MB against {memory['baseline_peak_mb']:.0f}"
-              f" MB before computing (+{memory['added_peak_mb']:.0f} MB), {memory['compute_s']:.1f} s, file +"
+        print(f"256 x 256 x 64: peak resident {memory['compute_peak_mb']:.0f} MB against "
+              f"{memory['baseline_peak_mb']:.0f} MB before computing (+{memory['added_peak_mb']:.0f} MB), {memory['compute_s']:.1f} s, file +"
               f"{memory['file_growth_mb']:.0f} MB (uncompressed block {memory['block_mb_uncompressed']:.0f} MB)")
     result = {"date": time.strftime("%Y-%m-%d"), "repeats": args.repeats, "load": os.getloadavg()[0],
               "paper": paper, "memory_256x256x64": memory}
