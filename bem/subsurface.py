@@ -178,8 +178,8 @@ class SubsurfaceStresses:
     Parameters: grid (`Grid`), nu (the substrate's Poisson ratio), threads (FFTW threads), planner (FFTW flag;
     plans are measured once per size and machine and kept as wisdom, like `HalfSpaceOperator`'s).
     Use `set_tractions(p, tau_x, tau_y)` (MPa, shape (ny, nx)), then `layer(z)` for each depth.
-    Memory: about 37 padded real arrays (15 kernels and their spectra, 3 traction spectra, 6 outputs): 80 MB for a
-    256 x 256 grid (padded 512 x 512).
+    Memory: the size of 48 padded real arrays (15 kernels and their spectra, 3 tractions and their spectra, 6 output
+    spectra and fields): 100 MB for a 256 x 256 grid (padded 512 x 512), whatever the number of depths.
     """
 
     def __init__(self, grid: Grid, nu: float, *, threads: int = 1, planner: str = "FFTW_MEASURE"):

@@ -7,8 +7,8 @@ the Hertz maximum of the shear stress (0.48 a), 0.1 a at 2 a.
 
 Writing: the run file is rebuilt in a temporary file beside it (everything but an older /subsurface copied, then
 the new group filled step by step, depth by depth) and renamed over it, under the run file's lock: a reader sees the
-old file or the new one, and a run still writing the file refuses the command. Memory: the stress operator (about 37
-padded arrays) and one depth layer of the nine fields, whatever the count of depths and steps
+old file or the new one, and a run still writing the file refuses the command. Memory: the stress operator (48 padded
+arrays' worth, 100 MB at 256 x 256) and one depth layer of the nine fields, whatever the count of depths and steps
 (benchmarks/subsurface.py measures a 256 x 256 x 64 block).
 """
 from __future__ import annotations
