@@ -91,11 +91,15 @@ def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 
     """
     path = Path(path)
     if not path.is_file():
-        raise InputError(f"{path}: no such run file")
+        raise InputError(f"{path}: " + ("is a folder; expected a run file (.h5)" if path.is_dir() else "no such file"))
+    if not h5py.is_hdf5(path):
+        raise InputError(f"{path}: not an HDF5 file; expected a run file written by rollcontact run")
     with OutputLock(path, label=str(path)):
         with h5py.File(path, "r") as src:
-            if "fields" not in src or "p" not in src["fields"]:
-                raise InputError(f"{path}: not a run file with field snapshots (no /fields/p)")
+            missing = [k for k in ("fields/p", "fields/tau_x", "fields/tau_y", "fields/step", "grid/x", "grid/y")
+                       if k not in src] + [k for k in ("scene",) if k not in src.attrs]
+            if missing:
+                raise InputError(f"{path}: not a run file with field snapshots (no {missing[0]})")
             chosen = _selected_steps(src["fields/step"][()], steps)
             scene = Scene.from_toml_text(_text(src.attrs["scene"]), run_limits=False)
             nu = scene.materials.nu2

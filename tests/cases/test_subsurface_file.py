@@ -103,6 +103,10 @@ def test_bad_requests_are_refused_before_any_work(hertz_run, tmp_path, capsys):
     assert "--step 7: not a stored step" in capsys.readouterr().err
     assert cli(["stresses", str(hertz_run), "--depths", "0,x"]) == 2
     assert cli(["stresses", str(tmp_path / "missing.h5")]) == 2
+    (tmp_path / "text.h5").write_text("not hdf5")
+    assert cli(["stresses", str(tmp_path / "text.h5")]) == 2
+    assert cli(["stresses", str(tmp_path)]) == 2
+    assert "is a folder" in capsys.readouterr().err
     assert cli(["stresses", str(hertz_run), "--all-steps", "--step", "0"]) == 2
     with OutputLock(hertz_run):
         assert cli(["stresses", str(hertz_run)]) == 2
