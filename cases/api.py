@@ -22,7 +22,7 @@ from rollcontact.cases.results.outputs import check_output
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.scene.scene import Scene, default_scene
 
-__all__ = ["load_scene", "run", "restart", "read_run", "sweep", "limit_search", "RunResult", "Scene",
+__all__ = ["load_scene", "run", "restart", "read_run", "stresses", "sweep", "limit_search", "RunResult", "Scene",
            "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted"]
 
 
@@ -83,6 +83,15 @@ def read_run(path) -> RunResult:
     """The run stored in the HDF5 file `path` (written by `run` or `rollcontact run`) as a RunResult. InputError
     when the file is missing or is not a run file."""
     return read_run_file(path, InputError, str(path))
+
+
+def stresses(path, *, steps=None, depths=None, progress=False) -> dict:
+    """Add the subsurface stresses of the run file `path` to it (as `rollcontact stresses`): the stress tensor, von
+    Mises, Tresca and the first principal stress at `depths` (mm; default: 30 depths from 0 to 2 a, finer near the
+    surface) for `steps` (stored steps, 'all', or None for the last stored one), stored as /subsurface (README, "HDF5
+    layout"). Returns {'steps', 'z', 'seconds'}; read them back with h5py or `rollcontact plot`."""
+    from rollcontact.cases.run.stresses import add_subsurface
+    return add_subsurface(path, steps=steps, depths=depths, progress=_progress(progress))
 
 
 def sweep(scene: Scene, vary, output, *, overrides=None, jobs=None, scheduler=None, overwrite=False,

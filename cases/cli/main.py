@@ -30,6 +30,11 @@ def _add_run(sub):
                         "continues from its last checkpoint")
     p.add_argument("--step", type=int, help="with --restart: the stored step to continue from")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
+    p.add_argument("--stresses", action="store_true",
+                   help="when the run ends, add the subsurface stresses of every stored step to its file "
+                        "(as `rollcontact stresses RUN.h5 --all-steps`)")
+    from rollcontact.cases.cli.stresses_cmd import add_depth_options
+    add_depth_options(p)
     p.set_defaults(func=_run)
 
 
@@ -43,6 +48,7 @@ def _run(args) -> int:
     if args.restart and args.scene:
         raise SceneError("give either a scene file or --restart, not both")
     progress = not args.quiet
+    depths = _stress_depths(args)
     if args.restart:
         out = args.output or _restart_output(args, progress)
         run = lambda: api.restart(args.restart, step=args.step, overrides=args.overrides,  # noqa: E731
@@ -64,7 +70,31 @@ def _run(args) -> int:
         print(f"the run did not complete: written to {result.path}, beside the complete run in {out}, "
               "which is kept", file=sys.stderr)
     print(format_summary(result))
+    if args.stresses and result.path is not None:
+        _add_stresses(result, depths, progress)
     return 0 if result.status == "complete" else 1
+
+
+def _add_stresses(result, depths, progress):
+    """`run --stresses`: the subsurface stresses of every stored step, added to the run's file when it ends."""
+    if not len(result.field_steps):
+        print("--stresses: the run stored no field snapshots (output.fields = 'none', or the MDR model); no "
+              "subsurface stresses computed", file=sys.stderr)
+        return
+    from rollcontact.cases.cli.stresses_cmd import report
+    from rollcontact.cases.run.stresses import add_subsurface
+    print(report(add_subsurface(result.path, steps="all", depths=depths, progress=print if progress else None),
+                 result.path))
+
+
+def _stress_depths(args):
+    """--depths parsed before any work (None: the default depths); refused without --stresses."""
+    if args.depths is None:
+        return None
+    if not args.stresses:
+        raise InputError("--depths applies only with --stresses (the subsurface stresses of the stored steps)")
+    from rollcontact.cases.run.stresses import parse_depths
+    return parse_depths(args.depths)
 
 
 def _interrupted_early_message(out) -> str:
@@ -135,6 +165,7 @@ def build_parser() -> argparse.ArgumentParser:
         limits_cmd.register(sub)
     from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)
     from rollcontact.cases.cli import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
+    from rollcontact.cases.cli import stresses_cmd; stresses_cmd.register(sub)  # noqa: E702
     return parser
 
 

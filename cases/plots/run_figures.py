@@ -347,7 +347,8 @@ def compare_maps_figure(va: RunView, sa: int, vb: RunView, sb: int):
 
 
 def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwrite=False) -> list:
-    """All figures of one run into out_dir: <stem>_history, _maps, _centrelines (PNG + PDF)."""
+    """All figures of one run into out_dir: <stem>_history, _maps, _centrelines (PNG + PDF), and when the file holds
+    subsurface stresses _subsurface_step<N> and _subsurface_maxima (cases.plots.subsurface_figures)."""
     stem = view.path.stem
     paths = save_figure(history_figure([view]), out_dir, f"{stem}_history", overwrite)
     if not view.has_fields:
@@ -360,6 +361,8 @@ def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwr
     step = view.resolve_step(step)
     paths += save_figure(maps_figure(view, step), out_dir, f"{stem}_maps_step{step}", overwrite)
     paths += save_figure(profiles_figure([view], [step]), out_dir, f"{stem}_centrelines_step{step}", overwrite)
+    from rollcontact.cases.plots.subsurface_figures import plot_subsurface
+    paths += plot_subsurface(view, out_dir, step, notes, overwrite)
     return paths
 
 

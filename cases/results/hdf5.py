@@ -87,6 +87,12 @@ def save_image(path, image: bytes) -> Path:
     return path
 
 
+def replacing(path):
+    """A temporary file beside `path` to write, renamed over `path` when the block ends without an error (the
+    modules that add to a run file, e.g. cases.results.subsurface, write through it)."""
+    return _replacing(Path(path))
+
+
 @contextmanager
 def _replacing(path: Path):
     """A temporary file beside `path` (.<name>.<pid>.tmp) to write, renamed over `path` when the block ends

@@ -43,8 +43,17 @@ SUMMARY_UNITS = {
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s",
 }
 
+#: /subsurface: z (depths below the surface, mm), step (the stored steps), and per name a dataset of shape
+#: (snapshots, nz, ny, nx): the stress components in the frame (x, y, z = depth into the substrate), tension
+#: positive; tresca is the maximum shear stress (sigma_1 - sigma_3)/2, principal_1 the largest principal stress.
+SUBSURFACE_UNITS = {
+    "s_xx": "MPa", "s_yy": "MPa", "s_zz": "MPa", "s_yz": "MPa", "s_xz": "MPa", "s_xy": "MPa", "von_mises": "MPa",
+    "tresca": "MPa", "principal_1": "MPa",
+}
+SUBSURFACE_NAMES = tuple(SUBSURFACE_UNITS)
+
 #: Units of every stored dataset (its 'units' attribute in HDF5).
-UNITS = {**HISTORY_UNITS, **FIELD_UNITS, "x": "mm", "y": "mm"}
+UNITS = {**HISTORY_UNITS, **FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
 
 
 @dataclass

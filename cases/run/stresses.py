@@ -1,0 +1,164 @@
+"""Subsurface stresses of a stored run: computed from the stored tractions (bem.subsurface) and added to the run file
+as /subsurface (layout: cases.results.subsurface; README, "HDF5 layout").
+
+Default depths: DEFAULT_DEPTH_COUNT depths from 0 to DEFAULT_DEPTH_EXTENT * a (a: the Hertz contact radius of the
+run's summary), z_k = extent a (k / (count - 1))^DEFAULT_DEPTH_GRADING: spacing 0.013 a under the surface, 0.06 a at
+the Hertz maximum of the shear stress (0.48 a), 0.1 a at 2 a.
+
+Writing: the run file is rebuilt in a temporary file beside it (everything but an older /subsurface copied, then
+the new group filled step by step, depth by depth) and renamed over it, under the run file's lock: a reader sees the
+old file or the new one, and a run still writing the file refuses the command. Memory: the stress operator (48 padded
+arrays' worth, 100 MB at 256 x 256) and one depth layer of the nine fields, whatever the count of depths and steps
+(benchmarks/subsurface.py measures a 256 x 256 x 64 block).
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+import time
+
+import h5py
+import numpy as np
+
+from rollcontact.bem.errors import InputError
+from rollcontact.bem.grid import Grid
+from rollcontact.bem.subsurface import COMPONENTS, SubsurfaceStresses, invariants
+from rollcontact.cases.results.hdf5 import GZIP_LEVEL, replacing, wait_for_replaced
+from rollcontact.cases.results.lock import OutputLock
+from rollcontact.cases.results.run_result import SUBSURFACE_NAMES, UNITS
+from rollcontact.cases.scene.scene import Scene
+
+DEFAULT_DEPTH_COUNT = 30
+DEFAULT_DEPTH_EXTENT = 2.0     # deepest default depth, in contact radii a
+DEFAULT_DEPTH_GRADING = 1.5    # z_k ~ k^grading: finer near the surface
+
+
+def default_depths(a: float, count: int = DEFAULT_DEPTH_COUNT, extent: float = DEFAULT_DEPTH_EXTENT,
+                   grading: float = DEFAULT_DEPTH_GRADING) -> np.ndarray:
+    """The default depths (mm) for a contact radius a (mm): z_k = extent a (k/(count-1))^grading, k = 0..count-1."""
+    if not (a > 0 and math.isfinite(a)):
+        raise InputError(f"contact radius a = {a!r} mm: must be > 0 to place the default depths; give --depths")
+    k = np.arange(count) / (count - 1)
+    return extent * a * k ** grading
+
+
+def parse_depths(text: str) -> np.ndarray:
+    """'z1,z2,...' (mm) -> sorted unique depths; InputError naming --depths for anything but finite values >= 0."""
+    try:
+        values = [float(v) for v in str(text).split(",") if v.strip()]
+    except ValueError:
+        raise InputError(f"--depths {text!r}: expected depths in mm separated by commas, e.g. 0,0.5,1.5") from None
+    if not values or not all(math.isfinite(v) and v >= 0 for v in values):
+        raise InputError(f"--depths {text!r}: each depth must be a finite number >= 0 (mm below the surface)")
+    return np.unique(np.array(values))
+
+
+def grid_of(x, y) -> Grid:
+    """The world-fixed `Grid` whose cell centres are the stored /grid/x, /grid/y (mm)."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    dx = float(x[1] - x[0]) if len(x) > 1 else 1.0
+    dy = float(y[1] - y[0]) if len(y) > 1 else dx
+    return Grid(len(x), len(y), dx, dy, int(round(x[0] / dx)), int(round(y[0] / dy)))
+
+
+def _selected_steps(stored, steps) -> list[int]:
+    """The requested steps (default: the last stored), each checked to be stored."""
+    stored = [int(s) for s in stored]
+    if not stored:
+        raise InputError("the run file stores no field snapshots (output.fields = 'none', or an MDR run): "
+                         "there are no tractions to compute stresses from")
+    if steps is None:
+        return stored[-1:]
+    if steps == "all":
+        return stored
+    chosen = sorted({int(s) for s in steps})
+    missing = [s for s in chosen if s not in stored]
+    if missing:
+        raise InputError(f"--step {missing[0]}: not a stored step; stored steps: {_compact(stored)}")
+    return chosen
+
+
+def _compact(steps) -> str:
+    return ", ".join(map(str, steps)) if len(steps) <= 12 else f"{steps[0]}, {steps[1]}, ..., {steps[-1]}"
+
+
+def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 1) -> dict:
+    """Compute the subsurface stresses of the run file `path` and store them in it (layout in the module docstring).
+
+    steps: stored steps (an iterable), 'all', or None for the last stored step. depths: depths in mm (>= 0), or None
+    for `default_depths` of the run's contact radius. progress: callable(message) or None. A /subsurface group the
+    file holds already is replaced. Returns {'steps', 'z', 'seconds'} (seconds: the computation, without the I/O).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path}: " + ("is a folder; expected a run file (.h5)" if path.is_dir() else "no such file"))
+    if not h5py.is_hdf5(path):
+        raise InputError(f"{path}: not an HDF5 file; expected a run file written by rollcontact run")
+    with OutputLock(path, label=str(path)):
+        with h5py.File(path, "r") as src:
+            missing = [k for k in ("fields/p", "fields/tau_x", "fields/tau_y", "fields/step", "grid/x", "grid/y")
+                       if k not in src] + [k for k in ("scene",) if k not in src.attrs]
+            if missing:
+                raise InputError(f"{path}: not a run file with field snapshots (no {missing[0]})")
+            chosen = _selected_steps(src["fields/step"][()], steps)
+            scene = Scene.from_toml_text(_text(src.attrs["scene"]), run_limits=False)
+            nu = scene.materials.nu2
+            grid = grid_of(src["grid/x"][()], src["grid/y"][()])
+            a = float(src["summary"].attrs.get("a", np.nan)) if "summary" in src else np.nan
+            z = np.asarray(depths, dtype=float) if depths is not None else default_depths(
+                a if a > 0 else scene.contact_radius)
+            if z.ndim != 1 or not len(z) or not np.all(np.isfinite(z) & (z >= 0)):
+                raise InputError(f"depths {depths!r}: must be finite values >= 0 mm")
+            with replacing(path) as tmp:
+                with h5py.File(tmp, "w") as dst:
+                    for key, value in src.attrs.items():
+                        dst.attrs[key] = value
+                    for key in src:
+                        if key != "subsurface":
+                            src.copy(src[key], dst, name=key)
+                    seconds = _fill(dst, src, grid, nu, chosen, z, depths is None, progress, threads)
+    wait_for_replaced()
+    return {"steps": chosen, "z": z, "seconds": seconds}
+
+
+def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
+    """Create /subsurface in `dst` and fill it step by step, depth by depth (tractions read from `src`)."""
+    group = dst.create_group("subsurface")
+    group.attrs["nu"] = nu
+    group.attrs["depths"] = "default" if default else "given"
+    for name, values in (("z", z), ("step", np.asarray(steps, dtype=np.int64))):
+        group.create_dataset(name, data=values).attrs["units"] = UNITS[name]
+    ny, nx = grid.shape
+    shape = (len(steps), len(z), ny, nx)
+    out = {}
+    for name in SUBSURFACE_NAMES:
+        out[name] = group.create_dataset(name, shape=shape, dtype=np.float64, chunks=(1, 1, ny, nx),
+                                         compression="gzip", compression_opts=GZIP_LEVEL)
+        out[name].attrs["units"] = UNITS[name]
+    stored = [int(s) for s in src["fields/step"][()]]
+    op = SubsurfaceStresses(grid, nu, threads=threads)
+    layer = np.empty((6, ny, nx))
+    seconds = 0.0
+    for i, step in enumerate(steps):
+        k = stored.index(step)
+        p, tx, ty = (src[f"fields/{n}"][k] for n in ("p", "tau_x", "tau_y"))
+        t0 = time.perf_counter()
+        op.set_tractions(p, tx, ty)
+        seconds += time.perf_counter() - t0
+        for j, depth in enumerate(z):
+            t0 = time.perf_counter()
+            op.layer(float(depth), out=layer)
+            derived = invariants(layer)
+            seconds += time.perf_counter() - t0
+            for m, name in enumerate(COMPONENTS):
+                out[name][i, j] = layer[m]
+            for name, values in derived.items():
+                out[name][i, j] = values
+        if progress:
+            progress(f"subsurface stresses: step {step} ({i + 1}/{len(steps)}), {len(z)} depths, max von Mises "
+                     f"{max(out['von_mises'][i, j].max() for j in range(len(z))):.4g} MPa")
+    return seconds
+
+
+def _text(value) -> str:
+    return value.decode() if isinstance(value, bytes) else str(value)
