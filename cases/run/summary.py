@@ -11,17 +11,14 @@ import numpy as np
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 from rollcontact.solver.rolling.shakedown import classify
 from rollcontact.solver.rolling.stepping import LoadPath
 
 
 def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:
     """Run summary: normalisations of seed Eq. 9 with the consistent constants (theory §8.2, P3)."""
-    pair = scene.material_pair
-    hertz = HertzSphere(scene.equivalent_radius, pair.E_star, scene.load.Fn)
-    cm = CattaneoMindlin(hertz, scene.load.mu, pair.G_star)
-    U0 = cm.U0
+    hertz = scene.normal_reference        # Hertz (sphere, ellipsoid's equivalent sphere) or the shape's MDR
+    U0 = scene.tangential_reference.U0
     e_f = np.array(scene.load_direction)
     U = np.asarray(history["U_x"]) * e_f[0] + np.asarray(history["U_y"]) * e_f[1]
     n_done = len(U)
@@ -57,12 +54,14 @@ def format_summary(result: RunResult) -> str:
     lines = []
     if len(h.get("step", [])):
         a_eq = math.sqrt(h["contact_area"][-1] / math.pi)
+        hertz = d.scene.shape in ("sphere", "ellipsoid")
+        ref = "Hertz" if hertz else "MDR"
         pressure = ""
         if len(d.field_steps):
             pressure = (f", max pressure {float(np.max(d.fields['p'][-1])):.5f} MPa "
-                        f"(Hertz p0 = {s['p0']:.5f} MPa)")
-        lines.append(f"contact radius {a_eq:.4f} mm (equivalent; Hertz a = {s['a']:.4f} mm), approach "
-                     f"{h['approach'][-1]:.6f} mm (Hertz d = {s['d']:.6f} mm){pressure}")
+                        f"({'Hertz p0' if hertz else 'scale p0 = 3 Fn/(2 pi a^2)'} = {s['p0']:.5f} MPa)")
+        lines.append(f"contact radius {a_eq:.4f} mm (equivalent; {ref} a = {s['a']:.4f} mm), approach "
+                     f"{h['approach'][-1]:.6f} mm ({ref} d = {s['d']:.6f} mm){pressure}")
         model = (f"MDR model, {s['springs']} springs" if s.get("fidelity") == "mdr"
                  else f"grid {s['nx']} x {s['ny']}")
         lines.append(f"steps {s['steps']}/{s['steps_planned']}, iterations {s['iterations']} "
