@@ -129,3 +129,38 @@ class MDRTangential:
         g = self.contact.profile
         c = self.stick_radius(f_t)
         return self.mu * self.contact.E_star / self.G_star * (float(g.mdr(self.contact.a)) - float(g.mdr(c)))
+
+    # --- oscillating rolling under constant Fn and Ft: the shakedown state of the spring row (theory §8.3) ---
+    def shakedown_force(self, b, W) -> float:
+        """f_t of the MDR shakedown state whose stick band reaches b - W (W <= b <= a; mm): theory §8.3 for any
+        profile. Springs of the permanently loaded band |s| <= a - W that ever slipped hold their smallest
+        bound mu (E*/G*) (d - g(|s| + W)), those of the stick band |s| < c_sd = b - W hold U_sd =
+        mu (E*/G*) (d - g(b)), so Ft = 2 E* mu [c_sd (d - g(b)) + int_b^a (d - g(t)) dt] and
+        f_t = (2 E*/Fn) [(b - W)(d - g(b)) + (a - b) d - G(a) + G(b)] (sphere: seed Eq. 12, kappa = 3/2)."""
+        c = self.contact
+        g, a, d = c.profile, c.a, c.approach
+        gb = float(g.mdr(b))
+        return 2.0 * c.E_star / c.Fn * ((b - W) * (d - gb) + (a - b) * d
+                                        - float(g.mdr_integral(a)) + float(g.mdr_integral(b)))
+
+    def shakedown_shift(self, f_t, W):
+        """u_sd = U_sd/U0 = 1 - g(b)/d of the MDR shakedown state at f_t and amplitude W (mm), or None when f_t is
+        above the limit (`limit`: the spring row ratchets)."""
+        from scipy.optimize import brentq
+        check_ft(f_t)
+        c = self.contact
+        a = c.a
+        if not (0.0 <= W < a):
+            raise InputError(f"W = {W!r} mm: the shakedown state needs 0 <= W < a = {a:.6g} mm")
+        if f_t > self.shakedown_force(W, W):
+            return None
+        if f_t == 0.0:
+            return 0.0
+        b = brentq(lambda x: self.shakedown_force(x, W) - f_t, W, a, xtol=1e-14 * a, rtol=1e-15)
+        return 1.0 - float(c.profile.mdr(b)) / c.approach
+
+    def limit(self, W) -> tuple[float, float]:
+        """(f_t,lim, u_lim) of the MDR at amplitude W (mm): the stick band vanishes (b = W), u_lim = 1 - g(W)/d
+        (sphere: f_t,lim = 1 - 1.5 w + 0.5 w^3, u_lim = 1 - w^2)."""
+        c = self.contact
+        return self.shakedown_force(W, W), 1.0 - float(c.profile.mdr(W)) / c.approach

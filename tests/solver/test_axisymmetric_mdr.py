@@ -98,3 +98,19 @@ def test_pressure_carries_the_load_and_tangential_limits(profile):
 def test_bad_profiles_are_refused_with_the_parameter_named(make, message):
     with pytest.raises(InputError, match=message):
         make()
+
+
+def test_shakedown_closed_form_for_n2_is_seed_eq_12():
+    """theory §8.3 written for any profile (MDRTangential.shakedown_shift, limit) reduces for the sphere to seed
+    Eq. 12 with kappa = 3/2, f_t = 1 - 1.5 w u_sd - (1 - u_sd)^(3/2), and to f_t,lim = 1 - 1.5 w + 0.5 w^3,
+    u_lim = 1 - w^2 (to 1e-12; u_sd is a root found to 1e-14 a)."""
+    tg = MDRTangential(MDRContact(PowerProfile(2.0, 40.0), E, FN), MU, G)
+    a = tg.contact.a
+    for w in (0.1, 0.23, 0.4):
+        f_lim, u_lim = tg.limit(w * a)
+        assert f_lim == pytest.approx(1 - 1.5 * w + 0.5 * w ** 3, rel=1e-12)
+        assert u_lim == pytest.approx(1 - w * w, rel=1e-12)
+        for f in (0.2, 0.5 * f_lim, 0.99 * f_lim):
+            u = tg.shakedown_shift(f, w * a)
+            assert 1 - 1.5 * w * u - (1 - u) ** 1.5 == pytest.approx(f, rel=1e-12)
+        assert tg.shakedown_shift(1.01 * f_lim, w * a) is None
