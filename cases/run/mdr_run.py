@@ -29,10 +29,10 @@ def run_mdr(scene: Scene, *, progress=None) -> RunResult:
     the model cannot represent (an ellipse, coupled materials, load levels)."""
     quadric = scene.shape in ("sphere", "ellipsoid")
     rx, ry = scene.radii if quadric else (None, None)
-    if rx != ry:
+    if rx != ry or scene.shape not in AXISYMMETRIC + ("ellipsoid",):
+        got = f"Rx = {rx}, Ry = {ry} mm" if quadric else f"shape = {scene.shape!r}"
         raise InputError(f"[solver] fidelity = 'mdr' needs an axisymmetric shape ({', '.join(AXISYMMETRIC)}), got "
-                         f"Rx = {rx}, Ry = {ry} mm: the MDR maps rotationally symmetric contacts only; use "
-                         "fidelity = 'bem'")
+                         f"{got}: the MDR maps rotationally symmetric contacts only; use fidelity = 'bem'")
     if abs(scene.material_pair.beta) > 1e-4:
         raise InputError(f"[solver] fidelity = 'mdr' needs uncoupled materials (|beta| <= 1e-4), got beta = "
                          f"{scene.material_pair.beta:.3g}; use fidelity = 'bem'")

@@ -8,28 +8,37 @@ other axisymmetric shapes). Units mm, N, MPa, degrees.
     cone           slope       r tan(slope), 0 < slope < 90 deg
     power          n, R        r^n/(n R^(n-1)), 1 <= n <= 20 (n = 2: the sphere)
     flat_rounded   b, R        0 for r <= b, (r - b)^2/(2R) beyond: a flat punch of radius b, edge radius R
+    cylinder       R, length, edge_R, axis ("x" or "y", default "x"): a roller along the axis t, n across it,
+                               n^2/(2R) + max(|t| - length/2, 0)^2/(2 edge_R): straight part `length`, rounded ends
 
 A key that does not belong to the chosen shape is refused (SceneError naming it and the keys the shape takes),
 as is a shape without one of its keys. The contact radius a that sets the default grid (a/12) and the unit of
-w is Hertz's for the sphere and the ellipsoid's equivalent sphere (as before), and the MDR's exact radius of
-the profile under Fn for the other shapes (`solver.mdr.exact.MDRContact`).
+w is Hertz's for the sphere and the ellipsoid's equivalent sphere (as before), the MDR's exact radius of
+the profile under Fn for the axisymmetric shapes (`solver.mdr.exact.MDRContact`), and for the cylinder the
+half-width of the 2-D line contact under the nominal load per length Fn/length (`solver.analytic.HertzLine`).
+The cylinder has no closed-form approach (a 2-D approach is not defined): its contact is estimated to reach
+length/2 + sqrt(2 edge_R d_est) along the axis with d_est = (2P/(pi E*)) (ln(2 length/a) + 1) (the run measured
+0.215 mm where d_est = 0.268 mm for R = 40, length = 40, edge_R = 5 mm under the seed's load), and the run
+summary takes its approach d (and U0) from the solved first step.
 """
 from __future__ import annotations
 
 import math
 
 from rollcontact.bem.errors import SceneError
-from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
+from rollcontact.solver.analytic import CattaneoMindlin, HertzLine, HertzSphere
 from rollcontact.solver.mdr.exact import MDRContact, MDRTangential
 from rollcontact.solver.rolling.axisymmetric import ConeProfile, PowerProfile, RoundedFlatProfile
-from rollcontact.solver.rolling.profiles import QuadricProfile
+from rollcontact.solver.rolling.profiles import QuadricProfile, RollerProfile
 
 #: the keys of each shape (besides `shape` itself)
 SHAPE_KEYS = {"sphere": ("R",), "ellipsoid": ("Rx", "Ry"), "cone": ("slope",), "power": ("n", "R"),
-              "flat_rounded": ("b", "R")}
+              "flat_rounded": ("b", "R"), "cylinder": ("R", "length", "edge_R", "axis")}
+#: keys a shape may leave out (their default)
+OPTIONAL = {"axis": "x"}
 #: shapes that are bodies of revolution (the MDR maps them exactly)
 AXISYMMETRIC = ("sphere", "cone", "power", "flat_rounded")
-_ALL_KEYS = ("R", "Rx", "Ry", "slope", "n", "b")
+_ALL_KEYS = ("R", "Rx", "Ry", "slope", "n", "b", "length", "edge_R", "axis")
 
 
 def resolve_shape(g) -> str:
@@ -50,7 +59,7 @@ def resolve_shape(g) -> str:
     if extra:
         raise SceneError(f"[geometry] shape = {shape!r} takes the key(s) {list(wanted)}; {', '.join(extra)} does "
                          "not belong to it")
-    missing = [k for k in wanted if getattr(g, k) is None]
+    missing = [k for k in wanted if getattr(g, k) is None and k not in OPTIONAL]
     if missing:
         raise SceneError(f"[geometry] shape = {shape!r} needs {', '.join(missing)} (keys of this shape: "
                          f"{list(wanted)})")
@@ -67,21 +76,38 @@ def shape_profile(g, shape: str):
         return ConeProfile(g.slope)
     if shape == "power":
         return PowerProfile(g.n, g.R)
+    if shape == "cylinder":
+        return RollerProfile(g.R, g.length, g.edge_R, g.axis or OPTIONAL["axis"])
     return RoundedFlatProfile(g.b, g.R)
 
 
 def normal_reference(g, shape: str, E_star: float, Fn: float):
     """Closed-form normal contact (a, approach, p0): Hertz of the (equivalent) sphere for the sphere and the
-    ellipsoid, the exact MDR solution for the other shapes."""
+    ellipsoid, the exact MDR solution for the axisymmetric shapes, the 2-D line contact under Fn/length for the
+    cylinder (a the half-width; no approach)."""
     if shape in ("sphere", "ellipsoid"):
         rx, ry = (g.R, g.R) if shape == "sphere" else (g.Rx, g.Ry)
         R = math.sqrt(rx) * math.sqrt(ry)   # as Scene.equivalent_radius, to the last bit (sqrt(R)^2 != R)
         return HertzSphere(R, E_star, Fn)
+    if shape == "cylinder":
+        return HertzLine(g.R, E_star, Fn / g.length)
     return MDRContact(shape_profile(g, shape), E_star, Fn)
 
 
+def cylinder_semi_axes(g, E_star: float, Fn: float) -> tuple[float, float]:
+    """Estimated semi-axes (along x, along y; mm) of the cylinder's contact: the nominal half-width a across the
+    axis and length/2 + sqrt(2 edge_R d_est) along it (cases.run.discretise adds 10 %: the pressure, and with it
+    the width, rises near the rounded ends)."""
+    line = HertzLine(g.R, E_star, Fn / g.length)
+    d_est = 2.0 * line.P / (math.pi * E_star) * (math.log(2.0 * g.length / line.a) + 1.0)
+    along, across = 0.5 * g.length + math.sqrt(2.0 * g.edge_R * d_est), line.a
+    return (along, across) if (g.axis or OPTIONAL["axis"]) == "x" else (across, along)
+
+
 def tangential_reference(normal, mu: float, G_star: float):
-    """Cattaneo-type reference (U0, stick_radius, shift) of a `normal_reference`."""
+    """Cattaneo-type reference (U0, stick_radius, shift) of a `normal_reference`; None for the cylinder."""
+    if isinstance(normal, HertzLine):
+        return None
     if isinstance(normal, HertzSphere):
         return CattaneoMindlin(normal, mu, G_star)
     return MDRTangential(normal, mu, G_star)

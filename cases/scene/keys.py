@@ -35,16 +35,21 @@ class Materials:
 class Geometry:
     # shape left out: "sphere" with R, "ellipsoid" with Rx and Ry (the keys each shape takes:
     # cases.scene.geometry.SHAPE_KEYS)
-    shape: str | None = _spec(None, choices=("sphere", "ellipsoid", "cone", "power", "flat_rounded"),
+    shape: str | None = _spec(None, choices=("sphere", "ellipsoid", "cone", "power", "flat_rounded", "cylinder"),
                               doc="profile shape (default: sphere with R, ellipsoid with Rx, Ry)")
     R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
-                            doc="sphere radius; power law R; edge radius of flat_rounded")
+                            doc="sphere radius; power law R; edge radius of flat_rounded; cylinder radius")
     Rx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="radius in x")
     Ry: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="radius in y")
     slope: float | None = _spec(None, 0, 90, lo_open=True, hi_open=True, unit="deg",
                                 doc="cone flank angle against the undeformed surface")
     n: float | None = _spec(None, 1, 20, doc="exponent of the power law h = r^n/(n R^(n-1))")
     b: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="flat radius of flat_rounded")
+    length: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                 doc="length of the cylinder's straight part")
+    edge_R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                 doc="radius of the cylinder's rounded ends")
+    axis: str | None = _spec(None, choices=("x", "y"), doc="direction of the cylinder's axis (default x)")
 
 
 @dataclass

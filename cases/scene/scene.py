@@ -34,7 +34,7 @@ from importlib import resources
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.geometry import (
-    SHAPE_KEYS, normal_reference, resolve_shape, shape_profile, tangential_reference)
+    SHAPE_KEYS, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
     SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, SECTION_ATTR, check_key)
 # re-exported: the names other modules import from cases.scene
@@ -227,13 +227,15 @@ class Scene(SceneLimits):
         """Contact radius a (mm), the unit of w: Hertz's of the equivalent sphere for a sphere or an ellipsoid, the
         MDR's exact radius of the profile under Fn for the other (axisymmetric) shapes."""
         if self.shape not in ("sphere", "ellipsoid"):
-            return self.normal_reference.a
+            return self.normal_reference.a        # the MDR's a; the cylinder's half-width under Fn/length
         return (3.0 * self.load.Fn * self.equivalent_radius / (4.0 * self.material_pair.E_star)) ** (1 / 3)
 
     @property
     def semi_axes(self) -> tuple[float, float]:
         """Contact semi-axes (mm) along x and y: exact for a sphere and the axisymmetric shapes (a, a),
-        Hertz's estimate c (Rx/Ry)^(+-1/3) for an ellipse."""
+        Hertz's estimate c (Rx/Ry)^(+-1/3) for an ellipse, an estimate for the cylinder (cylinder_semi_axes)."""
+        if self.shape == "cylinder":
+            return cylinder_semi_axes(self.geometry, self.material_pair.E_star, self.load.Fn)
         if self.shape not in ("sphere", "ellipsoid"):
             a = self.contact_radius
             return (a, a)

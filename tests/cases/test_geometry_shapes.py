@@ -178,3 +178,48 @@ def test_rounded_flat_punch_pressure_along_a_diameter(per_radius, rms_tol, peak_
     assert p.max() == pytest.approx(peak, rel=peak_tol)
     flat = r < 4.0 - dx
     assert np.abs(p[flat] - exact[flat]).max() < 0.01 * peak
+
+
+# ------------------------------------------------------------------------------------------------ cylinder
+@pytest.mark.parametrize("axis", ["x", "y"])
+def test_cylinder_mid_length_is_the_2d_line_contact(axis):
+    """A roller R = 40 mm with a straight part of 40 mm and ends rounded with 5 mm (axis along x or y) under the
+    seed's Fn on its default grid (dx = a/12 of the nominal half-width a = 2.16 mm under Fn/length): across the
+    axis at mid-length, the half-width (p^2 extrapolated to zero, as in `edge_radius`) and the peak pressure
+    against the plane-strain Hertz line contact (Johnson §4.3) under the load per length P carried there
+    (int p dn at mid-length), within 2 %. Measured +0.65 % and +0.07 %; P there is 0.83 Fn/length (the rounded
+    ends carry more: the peak pressure there is 2.2 times the line contact's)."""
+    from rollcontact.solver.analytic import HertzLine
+    scene = Scene.from_dict({"geometry": {"shape": "cylinder", "R": 40.0, "length": 40.0, "edge_R": 5.0,
+                                          "axis": axis}, "motion": {"periods": 0}, "output": {"fields": "all"}})
+    assert scene.contact_radius == HertzLine(40.0, scene.material_pair.E_star, scene.load.Fn / 40.0).a
+    d = run_scene(scene, None)
+    p = d.fields["p"][0]
+    along, across = (d.x, d.y) if axis == "x" else (d.y, d.x)
+    mid = p[:, int(np.argmin(np.abs(along)))] if axis == "x" else p[int(np.argmin(np.abs(along))), :]
+    h = across[1] - across[0]
+    line = HertzLine(40.0, scene.material_pair.E_star, mid.sum() * h)
+    i0 = int(np.argmin(np.abs(across)))
+    half = []
+    for r, q in ((across[i0:], mid[i0:]), (-across[i0::-1], mid[i0::-1])):
+        k = int(np.flatnonzero(q > 0).max())
+        q2, rr = q[k - 1:k + 1] ** 2, r[k - 1:k + 1]
+        half.append(rr[1] + q2[1] * (rr[1] - rr[0]) / (q2[0] - q2[1]))
+    assert np.mean(half) == pytest.approx(line.a, rel=0.02)
+    assert mid.max() == pytest.approx(line.p0, rel=0.02)
+    assert d.summary["d"] == d.history["approach"][0]      # no closed-form approach: the solved one
+
+
+def test_cylinder_keys():
+    """The cylinder takes R, length, edge_R and axis (default x); fidelity = 'mdr' refuses it (not axisymmetric)."""
+    base = {"shape": "cylinder", "R": 40.0, "length": 40.0, "edge_R": 5.0}
+    assert Scene.from_dict({"geometry": base}).profile.axis == "x"
+    with pytest.raises(SceneError, match="needs edge_R"):
+        Scene.from_dict({"geometry": {k: v for k, v in base.items() if k != "edge_R"}})
+    with pytest.raises(SceneError, match=r"axis = 'z': allowed values are \['x', 'y'\]"):
+        Scene.from_dict({"geometry": {**base, "axis": "z"}})
+    with pytest.raises(SceneError, match=r"length = 0.0 mm: allowed range is \(0, inf\)"):
+        Scene.from_dict({"geometry": {**base, "length": 0.0}})
+    from rollcontact.bem.errors import InputError
+    with pytest.raises(InputError, match="fidelity = 'mdr' needs an axisymmetric shape"):
+        run_scene(Scene.from_dict({"geometry": base, "solver": {"fidelity": "mdr"}}), None)
