@@ -33,7 +33,7 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     bem.grid.MAX_ELEMENTS) before its path is built.
     """
     semi_x, semi_y = scene.semi_axes
-    if scene.shape == "cylinder" or (scene.shape == "ellipsoid" and len(set(scene.radii)) > 1):  # estimates: 10 %
+    if scene.shape in ("cylinder", "file") or (scene.shape == "ellipsoid" and len(set(scene.radii)) > 1):  # estimates: 10 %
         semi_x, semi_y = 1.1 * semi_x, 1.1 * semi_y
     dx, dy = scene.spacing
     if path is not None:

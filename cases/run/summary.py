@@ -22,7 +22,7 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     n_done = len(history["U_x"])
     if scene.tangential_reference is not None:
         d, U0 = hertz.approach, scene.tangential_reference.U0
-    else:  # the cylinder: no closed-form approach, the solved one of the first step
+    else:  # the cylinder and a file profile: no closed-form approach, the solved one of the first step
         d = float(history["approach"][0]) if n_done else None
         U0 = scene.load.mu * pair.E_star * d / pair.G_star if n_done else None
     e_f = np.array(scene.load_direction)
@@ -60,14 +60,15 @@ def format_summary(result: RunResult) -> str:
     if len(h.get("step", [])):
         a_eq = math.sqrt(h["contact_area"][-1] / math.pi)
         shape = d.scene.shape
-        ref = {"sphere": "Hertz", "ellipsoid": "Hertz", "cylinder": "2-D line contact"}.get(shape, "MDR")
+        ref = {"sphere": "Hertz", "ellipsoid": "Hertz", "cylinder": "2-D line contact",
+               "file": "estimated (MDR of the radial envelope)"}.get(shape, "MDR")
         scale = {"sphere": "Hertz p0", "ellipsoid": "Hertz p0", "cylinder": "2-D line contact p0"}.get(
             shape, "scale p0 = 3 Fn/(2 pi a^2)")
         pressure = ""
         if len(d.field_steps):
             pressure = (f", max pressure {float(np.max(d.fields['p'][-1])):.5f} MPa ({scale} = {s['p0']:.5f} MPa)")
         lines.append(f"contact radius {a_eq:.4f} mm (equivalent; {ref} a = {s['a']:.4f} mm), approach "
-                     f"{h['approach'][-1]:.6f} mm ({'first step' if shape == 'cylinder' else ref} d = {s['d']:.6f} mm)"
+                     f"{h['approach'][-1]:.6f} mm ({'first step' if shape in ('cylinder', 'file') else ref} d = {s['d']:.6f} mm)"
                      f"{pressure}")
         model = (f"MDR model, {s['springs']} springs" if s.get("fidelity") == "mdr"
                  else f"grid {s['nx']} x {s['ny']}")

@@ -10,6 +10,7 @@ other axisymmetric shapes). Units mm, N, MPa, degrees.
     flat_rounded   b, R        0 for r <= b, (r - b)^2/(2R) beyond: a flat punch of radius b, edge radius R
     cylinder       R, length, edge_R, axis ("x" or "y", default "x"): a roller along the axis t, n across it,
                                n^2/(2R) + max(|t| - length/2, 0)^2/(2 edge_R): straight part `length`, rounded ends
+    file           path, sha256 (optional): h(x, y) sampled in a file, interpolated (cases.scene.profile_file)
 
 A key that does not belong to the chosen shape is refused (SceneError naming it and the keys the shape takes),
 as is a shape without one of its keys. The contact radius a that sets the default grid (a/12) and the unit of
@@ -23,22 +24,28 @@ summary takes its approach d (and U0) from the solved first step.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
 import math
+from pathlib import Path
+
+import numpy as np
 
 from rollcontact.bem.errors import SceneError
 from rollcontact.solver.analytic import CattaneoMindlin, HertzLine, HertzSphere
 from rollcontact.solver.mdr.exact import MDRContact, MDRTangential
 from rollcontact.solver.rolling.axisymmetric import ConeProfile, PowerProfile, RoundedFlatProfile
-from rollcontact.solver.rolling.profiles import QuadricProfile, RollerProfile
+from rollcontact.solver.rolling.profiles import ArrayProfile, QuadricProfile, RollerProfile
+from rollcontact.cases.scene.profile_file import (
+    allowed_digest, check_coverage, envelope_contact_radius, read_profile_file)
 
 #: the keys of each shape (besides `shape` itself)
 SHAPE_KEYS = {"sphere": ("R",), "ellipsoid": ("Rx", "Ry"), "cone": ("slope",), "power": ("n", "R"),
-              "flat_rounded": ("b", "R"), "cylinder": ("R", "length", "edge_R", "axis")}
-#: keys a shape may leave out (their default)
-OPTIONAL = {"axis": "x"}
+              "flat_rounded": ("b", "R"), "cylinder": ("R", "length", "edge_R", "axis"), "file": ("path", "sha256")}
+#: keys a shape may leave out (their default; the file's sha256 is filled in from the file)
+OPTIONAL = {"axis": "x", "sha256": None}
 #: shapes that are bodies of revolution (the MDR maps them exactly)
 AXISYMMETRIC = ("sphere", "cone", "power", "flat_rounded")
-_ALL_KEYS = ("R", "Rx", "Ry", "slope", "n", "b", "length", "edge_R", "axis")
+_ALL_KEYS = ("R", "Rx", "Ry", "slope", "n", "b", "length", "edge_R", "axis", "path", "sha256")
 
 
 def resolve_shape(g) -> str:
@@ -78,6 +85,9 @@ def shape_profile(g, shape: str):
         return PowerProfile(g.n, g.R)
     if shape == "cylinder":
         return RollerProfile(g.R, g.length, g.edge_R, g.axis or OPTIONAL["axis"])
+    if shape == "file":
+        x, y, h, _ = read_profile_file(g.path)
+        return ArrayProfile(x, y, h)
     return RoundedFlatProfile(g.b, g.R)
 
 
@@ -91,7 +101,22 @@ def normal_reference(g, shape: str, E_star: float, Fn: float):
         return HertzSphere(R, E_star, Fn)
     if shape == "cylinder":
         return HertzLine(g.R, E_star, Fn / g.length)
+    if shape == "file":
+        x, y, h, digest = read_profile_file(g.path)
+        return EstimatedContact(envelope_contact_radius(x, y, h, E_star, Fn, key=digest), Fn)
     return MDRContact(shape_profile(g, shape), E_star, Fn)
+
+
+@dataclass(frozen=True)
+class EstimatedContact:
+    """A contact without closed form (the file profile): the estimated radius a (mm) and p0 = 3 Fn/(2 pi a^2)."""
+
+    a: float
+    Fn: float
+
+    @property
+    def p0(self) -> float:
+        return 1.5 * self.Fn / (math.pi * self.a ** 2)
 
 
 def cylinder_semi_axes(g, E_star: float, Fn: float) -> tuple[float, float]:
@@ -105,9 +130,28 @@ def cylinder_semi_axes(g, E_star: float, Fn: float) -> tuple[float, float]:
 
 
 def tangential_reference(normal, mu: float, G_star: float):
-    """Cattaneo-type reference (U0, stick_radius, shift) of a `normal_reference`; None for the cylinder."""
-    if isinstance(normal, HertzLine):
+    """Cattaneo-type reference (U0, stick_radius, shift) of a `normal_reference`; None for the cylinder and the
+    file (no closed-form approach)."""
+    if isinstance(normal, (HertzLine, EstimatedContact)):
         return None
     if isinstance(normal, HertzSphere):
         return CattaneoMindlin(normal, mu, G_star)
     return MDRTangential(normal, mu, G_star)
+
+
+def checked_file_geometry(g):
+    """The Geometry of a file shape with its path made absolute and its sha256 filled in (or checked: SceneError
+    when the file changed), and whether sha256 was filled in (a derived key)."""
+    path = str(Path(g.path).expanduser().resolve())
+    digest = read_profile_file(path)[3]
+    allowed_digest(g.sha256, digest, path)
+    return replace(g, path=path, sha256=digest), g.sha256 is None
+
+
+def check_file_coverage(scene):
+    """SceneError unless the file covers what the run evaluates about the centre (cases.scene.profile_file)."""
+    x, y = read_profile_file(scene.geometry.path)[:2]
+    (sx, sy), (dx, dy) = scene.semi_axes, scene.spacing
+    margin = max(scene.grid.margin, dx, dy)
+    W = scene.amplitude * np.abs(np.array(scene.rolling_direction)) if scene.motion.periods > 0 else np.zeros(2)
+    check_coverage(x, y, 1.1 * sx + margin + dx + 2 * W[0], 1.1 * sy + margin + dy + 2 * W[1], scene.geometry.path)

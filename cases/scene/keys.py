@@ -35,7 +35,8 @@ class Materials:
 class Geometry:
     # shape left out: "sphere" with R, "ellipsoid" with Rx and Ry (the keys each shape takes:
     # cases.scene.geometry.SHAPE_KEYS)
-    shape: str | None = _spec(None, choices=("sphere", "ellipsoid", "cone", "power", "flat_rounded", "cylinder"),
+    shape: str | None = _spec(None, choices=("sphere", "ellipsoid", "cone", "power", "flat_rounded", "cylinder",
+                                             "file"),
                               doc="profile shape (default: sphere with R, ellipsoid with Rx, Ry)")
     R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                             doc="sphere radius; power law R; edge radius of flat_rounded; cylinder radius")
@@ -50,6 +51,8 @@ class Geometry:
     edge_R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                                  doc="radius of the cylinder's rounded ends")
     axis: str | None = _spec(None, choices=("x", "y"), doc="direction of the cylinder's axis (default x)")
+    path: str | None = _spec(None, doc="profile file of shape = 'file' (.npz x, y, h; .npy or .csv rows x, y, h)")
+    sha256: str | None = _spec(None, doc="SHA-256 of the profile file (filled in when left out, checked when given)")
 
 
 @dataclass
@@ -114,6 +117,10 @@ def check_key(sec, f, value):
     if meta.get("choices"):
         if value not in meta["choices"]:
             raise SceneError(f"{key} = {value!r}: allowed values are {list(meta['choices'])}")
+        return value
+    if f.type == "str | None":   # text keys without choices (geometry.path, geometry.sha256)
+        if not isinstance(value, str) or not value:
+            raise SceneError(f"{key} = {value!r}: expected a non-empty string")
         return value
     if f.name == "levels":
         if not isinstance(value, list) or not all(_is_number(v) for v in value):

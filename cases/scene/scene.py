@@ -34,7 +34,7 @@ from importlib import resources
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.geometry import (
-    SHAPE_KEYS, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
+    SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
     SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, SECTION_ATTR, check_key)
 # re-exported: the names other modules import from cases.scene
@@ -90,7 +90,12 @@ class Scene(SceneLimits):
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
         scene._check_consistency()
+        if scene.shape == "file":
+            scene.geometry, filled = checked_file_geometry(scene.geometry)
+            scene.derived = frozenset({"geometry.sha256"} if filled else ())
         scene._resolve_resolution()
+        if scene.shape == "file":
+            check_file_coverage(scene)
         if run_limits:
             scene._check_resolution()
             scene._check_steps()
@@ -103,14 +108,18 @@ class Scene(SceneLimits):
             text = path.read_text()
         except OSError as exc:
             raise SceneError(f"scene file {path}: {exc.strerror}") from None
-        return cls.from_toml_text(text, name=path.stem)
+        return cls.from_toml_text(text, name=path.stem, base=path.parent)
 
     @classmethod
-    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True) -> "Scene":
+    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True, base=None) -> "Scene":
+        """base: the folder a relative [geometry] path is relative to (the scene file's; default the current one)."""
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene {name}: not valid TOML ({exc})") from None
+        geometry = data.get("geometry")
+        if base is not None and isinstance(geometry, dict) and isinstance(geometry.get("path"), str):
+            geometry["path"] = str(Path(base) / Path(geometry["path"]).expanduser())
         return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
