@@ -16,7 +16,7 @@ import numpy as np
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
-from rollcontact.cases.plots.common import FIGSIZE, MDR_COLOUR, save_figure, setting_colour
+from rollcontact.cases.plots.common import FIGSIZE, MDR_COLOUR, save_figure, setting_colour, setting_of
 
 MARKERS = {"parallel": "o", "perpendicular": "^"}
 
@@ -35,8 +35,10 @@ def shape_usd_figure(points, scene, limits, title):
                 label=f"MDR $u_{{sd}}$ of the profile, w = {w:g} (theory §8.3)")
         ax.plot(f_lim, u_lim, "o", color=MDR_COLOUR, ms=5)
         ax.annotate(f"MDR limit {f_lim:.3f}", (f_lim, u_lim), xytext=(6, -10), textcoords="offset points", fontsize=8)
-    for r in limits:
-        ax.axvspan(r["f_t"] - r["f_err"], r["f_t"] + r["f_err"], color=setting_colour(r["angle"]), alpha=0.25)
+    for r in limits:                       # f_err = [[below], [above]] of read_limits
+        if r["f_err"] is not None:
+            ax.axvspan(r["f_t"] - r["f_err"][0][0], r["f_t"] + r["f_err"][1][0], color=setting_colour(r["angle"]),
+                       alpha=0.25)
     handles = ax.get_legend_handles_labels()[0]
     for group in sorted({p.group for p in points}):
         sel = [p for p in points if p.group == group and p.state == "shakedown" and p.u_sd is not None]
@@ -67,12 +69,16 @@ def plot_shape_folder(points, scene, limits, out_dir, stem, title, out=print, ov
     tg = scene.tangential_reference
     a = scene.contact_radius
     out(f"{scene.shape} profile: MDR contact radius a = {a:.4g} mm, U0 = {tg.U0:.4g} mm")
-    out("setting            f_t     w       state        u_sd     MDR u_sd")
+    out(f"{'setting':24s} f_t     w       state        u_sd     MDR u_sd")
     for p in sorted(points, key=lambda q: (q.group, q.w, q.f_t)):
         mdr = tg.shakedown_shift(p.f_t, p.w * a) if p.w > 0 else tg.shift(p.f_t) / tg.U0
-        out(f"{p.group:18s} {p.f_t:6.3f}  {p.w:6.3f}  {p.state:11s}  "
+        out(f"{p.group:24s} {p.f_t:5.3f}  {p.w:6.3f}  {p.state:11s}  "
             f"{'-' if p.u_sd is None else f'{p.u_sd:.4f}':7s}  {'ratchets' if mdr is None else f'{mdr:.4f}'}")
     for w in sorted({round(p.w, 6) for p in points if p.w > 0}):
         f_lim, u_lim = tg.limit(w * a)
         out(f"MDR limit at w = {w:g}: f_t,lim = {f_lim:.4f}, u_lim = {u_lim:.4f}")
+    for r in limits:
+        if r["f_err"] is not None:
+            out(f"3-D limit (limits.csv), {setting_of(r['angle'])}, w = {r['w']:g}: f_t,lim in "
+                f"[{r['f_t'] - r['f_err'][0][0]:.4f}, {r['f_t'] + r['f_err'][1][0]:.4f}]")
     return save_figure(shape_usd_figure(points, scene, limits, title), out_dir, f"{stem}_usd", overwrite)
