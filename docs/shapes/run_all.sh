@@ -17,4 +17,6 @@ for s in cone power4 flat_rounded; do
   cp $OUT/${s}_limits/limits.csv $OUT/${s}_sweep/limits.csv
   $RC plot $OUT/${s}_sweep -o $FIG --overwrite > $FIG/${s}_table.txt
 done
-$RC plot $OUT/flat_rounded_sweep/ft=0.5_angle=90__*.h5 -o $FIG --overwrite
+$RC plot $OUT/flat_rounded_sweep/ft=0.5_angle=90__*.h5 -o $OUT/flat_plots --overwrite
+cp $OUT/flat_plots/ft=0.5_angle=90__*_maps_step241.png $FIG/flat_rounded_maps.png
+rm -f $FIG/*.pdf
