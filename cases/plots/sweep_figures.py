@@ -369,7 +369,7 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
         notes.append(f"{limits_path}: no rows with recognisable w and f_t columns; not drawn")
     title = folder.resolve().name
     scene = _first_scene(folder)
-    if scene is not None and scene.tangential_reference is not None and scene.shape not in ("sphere", "ellipsoid"):
+    if scene is not None and scene.shape in ("cone", "power", "flat_rounded"):
         from rollcontact.cases.plots.shape_figures import plot_shape_folder    # the profile's own MDR
         return plot_shape_folder(points, scene, limits, out_dir, folder.resolve().name, title, out, overwrite)
     fits = kappa_fits(points)

@@ -70,8 +70,9 @@ class Scene(SceneLimits):
     # --- construction ----------------------------------------------------------------------------
     @classmethod
     def from_dict(cls, data: dict, name: str = "scene", run_limits: bool = True) -> "Scene":
-        """run_limits=False skips the checks that only a new run needs (grid resolution, number of steps), for
-        reading the scene stored in a run file written before those checks existed."""
+        """run_limits=False skips the checks that only a new run needs (grid resolution, number of steps, a file
+        profile's file and checksum), for reading the scene stored in a run file (written before those checks
+        existed, or whose profile file is elsewhere now)."""
         if not isinstance(data, dict):
             raise SceneError("scene: expected a table of sections")
         unknown = set(data) - set(SECTIONS)
@@ -90,11 +91,11 @@ class Scene(SceneLimits):
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
         scene._check_consistency()
-        if scene.shape == "file":
+        if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
         scene._resolve_resolution()
-        if scene.shape == "file":
+        if scene.shape == "file" and run_limits:
             check_file_coverage(scene)
         if run_limits:
             scene._check_resolution()

@@ -282,3 +282,19 @@ def test_file_profile_refusals(tmp_path):
     good.write_bytes(good.read_bytes() + b"\0")
     with pytest.raises(SceneError, match=r"\[geometry\] sha256 = .* does not match the file"):
         Scene.from_toml_text(scene.to_toml())
+
+
+def test_a_file_run_is_readable_and_plotted_without_its_profile_file(tmp_path):
+    """The scene stored in a run file is read (RunResult.scene, `rollcontact plot`) after its profile file is gone;
+    only a new run or a restart (which checks the file and its checksum) needs it."""
+    from rollcontact.cases.cli.main import main as run_cli
+    from rollcontact.cases.results.hdf5 import read_run
+    path = _sphere_file(tmp_path, "npz")
+    scene = Scene.from_dict({"geometry": {"shape": "file", "path": str(path)}, "load": {"ft": 0.3},
+                             "motion": {"periods": 0}, "grid": {"dx": 1.0}})
+    run_scene(scene, tmp_path / "run.h5")
+    path.unlink()
+    assert read_run(tmp_path / "run.h5").scene.geometry.path == str(path)
+    assert run_cli(["plot", str(tmp_path / "run.h5"), "-o", str(tmp_path / "figs")]) == 0
+    with pytest.raises(SceneError, match="no such file"):
+        Scene.from_toml_text(scene.to_toml())
