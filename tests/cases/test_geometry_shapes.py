@@ -2,7 +2,8 @@
 the shape's own contact radius, and the 3-D runs of the cone, the power law n = 4 and the rounded flat punch on
 that default grid against the exact MDR answers (solver.mdr.exact; theory.md §11.4): approach and contact radius
 (normal), the shift U and the stick radius under Ft raised to f_t = 0.9 (tangential, Jaeger/Ciavarella), the
-pressure of the rounded flat punch and the traction along a diameter. Units mm, N, MPa.
+pressure of the rounded flat punch and the traction along a diameter; the cylinder against the 2-D line contact;
+file profiles. Units mm, N, MPa.
 
 The seed's materials and Fn = 21.19 N; cone slope 6 deg (a = 4.70 mm), power law n = 4, R = 10 mm (a = 5.09 mm),
 flat punch b = 4 mm with edge radius R = 5 mm (a = 4.96 mm): contacts of the size of the seed's Hertz contact.
@@ -156,6 +157,34 @@ def test_traction_along_a_diameter_is_the_difference_of_two_normal_solutions(loa
     exact = scene.load.mu * (ref.pressure(r[keep]) - inner.pressure(r[keep]))
     rms = math.sqrt(np.mean((d.fields["tau_x"][2][iy][keep] - exact) ** 2)) / (scene.load.mu * ref.p0)
     assert rms < scene.grid.dx / ref.a, rms
+
+
+@pytest.mark.parametrize("loaded", [(n, True) for n in SHAPES], indirect=True, ids=[f"{n}-nu0" for n in SHAPES])
+def test_stick_radius_of_the_best_fitting_superposition_within_1_percent(loaded):
+    """nu = 0 (exact superposition): the traction deficit mu p - tau_x along both centre lines (centre element left
+    out) fitted by mu p(r; c), the MDR pressure of contact radius c, over c; the fitted c against the closed form
+    (Fn(c) = (1 - f_t) Fn) within 1 % on the default grid for f_t = 0.25 ... 0.9, where the area of the stuck
+    elements is up to 0.27 dx (2.9 %) off. Measured: cone -0.98 % (f_t = 0.9, c = 3.8 dx) ... +0.17 %, n = 4
+    -0.40 ... -0.14 %, flat -0.67 ... -0.03 %."""
+    from scipy.optimize import minimize_scalar
+    scene, d = loaded
+    assert scene.materials.nu2 == 0.0
+    ref, tg, mu = scene.normal_reference, scene.tangential_reference, scene.load.mu
+    X, Y = np.meshgrid(d.x, d.y)
+    r_all = np.hypot(X, Y)
+    for k, f in enumerate(LEVELS, start=1):
+        line = (np.isclose(Y, 0) | np.isclose(X, 0)) & (r_all > 0.5 * scene.grid.dx) & (d.fields["p"][k] > 0)
+        r, deficit = r_all[line], (mu * d.fields["p"][k] - d.fields["tau_x"][k])[line]
+        c = tg.stick_radius(f)
+        lo = 0.5 * c
+        while ref.force_at(lo) <= 1e-9 * ref.Fn:     # the flat punch's Fn(c) is 0 for c <= b
+            lo = 0.5 * (lo + c)
+
+        def misfit(x):
+            return float(np.sum((deficit - mu * MDRContact(ref.profile, ref.E_star, ref.force_at(x)).pressure(r)) ** 2))
+
+        fit = minimize_scalar(misfit, bounds=(lo, min(1.5 * c, ref.a)), method="bounded", options={"xatol": 1e-5}).x
+        assert fit == pytest.approx(c, rel=0.01), (f, fit / c - 1)
 
 
 @pytest.mark.parametrize("per_radius, rms_tol, peak_tol", [(12, 0.025, 0.03), (24, 0.01, 0.01)])
