@@ -48,6 +48,33 @@ class HertzSphere:
         return np.where(r <= a, out, outside)
 
 
+@dataclass(frozen=True)
+class HertzLine:
+    """2-D (plane strain) Hertz line contact of a cylinder of radius R (mm) on a flat, contact modulus E* (MPa),
+    load P per unit length (N/mm) (Johnson 1985, §4.3): half-width a = sqrt(4 P R/(pi E*)),
+    p0 = 2 P/(pi a) = E* a/(2 R), p(x) = p0 sqrt(1 - x^2/a^2). The approach is not defined in 2-D (it depends on
+    where the displacement is measured), so there is none here."""
+
+    R: float
+    E_star: float
+    P: float
+
+    @property
+    def a(self) -> float:
+        """Half-width (mm)."""
+        return math.sqrt(4.0 * self.P * self.R / (math.pi * self.E_star))
+
+    @property
+    def p0(self) -> float:
+        """Peak pressure 2 P/(pi a) (MPa)."""
+        return 2.0 * self.P / (math.pi * self.a)
+
+    def pressure(self, x):
+        """p(x) = p0 sqrt(1 - x^2/a^2) inside, 0 outside (MPa); x across the line, mm."""
+        x = np.asarray(x, dtype=float)
+        return self.p0 * np.sqrt(np.clip(1.0 - (x / self.a) ** 2, 0.0, None))
+
+
 def check_ft(f_t):
     if not (0.0 <= f_t <= 1.0):
         raise InputError(f"f_t = Ft/(mu Fn) = {f_t!r}: allowed range is 0 <= f_t <= 1")

@@ -377,6 +377,10 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
     if limits_path.exists() and not limits and notes is not None:
         notes.append(f"{limits_path}: no rows with recognisable w and f_t columns; not drawn")
     title = folder.resolve().name
+    scene = _first_scene(folder)
+    if scene is not None and scene.shape in ("cone", "power", "flat_rounded"):
+        from rollcontact.cases.plots.shape_figures import plot_shape_folder    # the profile's own MDR
+        return plot_shape_folder(points, scene, limits, out_dir, folder.resolve().name, title, out, overwrite)
     fits = kappa_fits(points)
     if fit_scope(points):
         out(fit_scope(points))
@@ -391,3 +395,12 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
         out(angle_fit_text(points, limits))
         paths += save_figure(angle_figure(points, limits, title), out_dir, f"{stem}_angles", overwrite)
     return paths
+
+
+def _first_scene(folder: Path):
+    """The scene of the first run file of the folder (None without one): its shape selects the figures."""
+    for f in sorted(folder.glob("*.h5")) + sorted(folder.glob("runs/*.h5")):
+        stored = stored_summary(f) if f.name not in ("summary.h5", "limits.h5") else None
+        if stored and stored["scene"]:
+            return Scene.from_toml_text(stored["scene"], name=f.stem, run_limits=False)
+    return None

@@ -18,7 +18,7 @@ from rollcontact.cases.run.recorder import StepRecorder
 from rollcontact.cases.run.summary import summarise
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.normal import NormalParams
-from rollcontact.solver.rolling import QuadricProfile, StepParams, run_path
+from rollcontact.solver.rolling import StepParams, run_path
 from rollcontact.solver.tangential import TangentialParams, kernels_cached
 
 #: Seconds between two progress lines.
@@ -51,7 +51,7 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None) -> Ru
     status, error, state_label, interrupted = "complete", "", None, None
     last_report = time.perf_counter()
     try:
-        for rec in run_path(op, QuadricProfile(*scene.radii), path, Fn=scene.load.Fn, mu=scene.load.mu,
+        for rec in run_path(op, scene.profile, path, Fn=scene.load.Fn, mu=scene.load.mu,
                             params=params, state=None if restart is None else restart.state):
             row = recorder.add(rec)
             if checkpoint is not None:

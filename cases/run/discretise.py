@@ -26,14 +26,14 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     """Grid just large enough for every contact the path can produce, plus the scene's margin.
 
     The Hertz semi-axes of an ellipse are estimated from the equivalent sphere, c (Rx/Ry)^(+-1/3), with
-    a 10 % allowance; the run stops with ContactEdgeError if a contact still reaches the edge. The margin is
+    a 10 % allowance, as are the cylinder's (cases.scene.geometry.cylinder_semi_axes); the sphere's and the other
+    axisymmetric shapes' contact radius is exact (Hertz, MDR); the run stops with ContactEdgeError if a contact still reaches the edge. The margin is
     at least one element (max(dx, dy)). Without a path, the centres are the extremes of the scene's
     oscillation (0 and +-W along the rolling direction), so an over-large scene is refused (SceneError,
     bem.grid.MAX_ELEMENTS) before its path is built.
     """
-    rx, ry = scene.radii
     semi_x, semi_y = scene.semi_axes
-    if rx != ry:  # the ellipse's semi-axes are estimates: 10 % allowance
+    if scene.shape in ("cylinder", "file") or (scene.shape == "ellipsoid" and len(set(scene.radii)) > 1):  # estimates: 10 %
         semi_x, semi_y = 1.1 * semi_x, 1.1 * semi_y
     dx, dy = scene.spacing
     if path is not None:

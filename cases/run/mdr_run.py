@@ -19,16 +19,20 @@ from rollcontact.solver.mdr.simulate import simulate_mdr
 
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import HISTORY_NAMES, RunResult
+from rollcontact.cases.scene.geometry import AXISYMMETRIC
 from rollcontact.cases.scene.scene import Scene
 
 
 def run_mdr(scene: Scene, *, progress=None) -> RunResult:
-    """Run `scene` on the 1-D MDR model; the result is not written (its path is None). InputError for a scene the
-    model cannot represent (an ellipse, coupled materials, load levels)."""
-    rx, ry = scene.radii
-    if rx != ry:
-        raise InputError(f"[solver] fidelity = 'mdr' needs a sphere (R), got Rx = {rx}, Ry = {ry} mm: the MDR "
-                         "maps rotationally symmetric contacts only; use fidelity = 'bem'")
+    """Run `scene` on the 1-D MDR model; the result is not written (its path is None). The sphere and the other
+    axisymmetric shapes (cone, power, flat_rounded: their MDR profiles g(s), theory §11.4). InputError for a scene
+    the model cannot represent (an ellipse, coupled materials, load levels)."""
+    quadric = scene.shape in ("sphere", "ellipsoid")
+    rx, ry = scene.radii if quadric else (None, None)
+    if rx != ry or scene.shape not in AXISYMMETRIC + ("ellipsoid",):
+        got = f"Rx = {rx}, Ry = {ry} mm" if quadric else f"shape = {scene.shape!r}"
+        raise InputError(f"[solver] fidelity = 'mdr' needs an axisymmetric shape ({', '.join(AXISYMMETRIC)}), got "
+                         f"{got}: the MDR maps rotationally symmetric contacts only; use fidelity = 'bem'")
     if abs(scene.material_pair.beta) > 1e-4:
         raise InputError(f"[solver] fidelity = 'mdr' needs uncoupled materials (|beta| <= 1e-4), got beta = "
                          f"{scene.material_pair.beta:.3g}; use fidelity = 'bem'")
@@ -36,7 +40,8 @@ def run_mdr(scene: Scene, *, progress=None) -> RunResult:
         raise InputError("[load] levels are not supported by fidelity = 'mdr'; use fidelity = 'bem'")
     t0 = time.perf_counter()
     pair = scene.material_pair
-    res = simulate_mdr(R=rx, E_star=pair.E_star, G_star=pair.G_star, Fn=scene.load.Fn, mu=scene.load.mu,
+    shape = dict(R=rx) if quadric else dict(profile=scene.profile)
+    res = simulate_mdr(**shape, E_star=pair.E_star, G_star=pair.G_star, Fn=scene.load.Fn, mu=scene.load.mu,
                        Ft=scene.Ft, W=scene.amplitude, dW=scene.motion.dW,
                        periods=scene.motion.periods if scene.amplitude > 0 else 0,
                        ramp_steps=scene.load.ramp_steps, shakedown_tol=scene.solver.shakedown_tol)

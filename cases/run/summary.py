@@ -11,7 +11,6 @@ import numpy as np
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 from rollcontact.solver.rolling.shakedown import classify
 from rollcontact.solver.rolling.stepping import LoadPath
 
@@ -23,14 +22,17 @@ SIDEWAYS_REPORTED = 1e-9
 def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:
     """Run summary: normalisations of seed Eq. 9 with the consistent constants (theory §8.2, P3)."""
     pair = scene.material_pair
-    hertz = HertzSphere(scene.equivalent_radius, pair.E_star, scene.load.Fn)
-    cm = CattaneoMindlin(hertz, scene.load.mu, pair.G_star)
-    U0 = cm.U0
+    hertz = scene.normal_reference        # Hertz (sphere, ellipsoid's equivalent sphere) or the shape's MDR
+    n_done = len(history["U_x"])
+    if scene.tangential_reference is not None:
+        d, U0 = hertz.approach, scene.tangential_reference.U0
+    else:  # the cylinder and a file profile: no closed-form approach, the solved one of the first step
+        d = float(history["approach"][0]) if n_done else None
+        U0 = scene.load.mu * pair.E_star * d / pair.G_star if n_done else None
     e_f = np.array(scene.load_direction)
     U = np.asarray(history["U_x"]) * e_f[0] + np.asarray(history["U_y"]) * e_f[1]
     U_perp = np.asarray(history["U_perp"])
-    n_done = len(U)
-    summary = dict(a=hertz.a, d=hertz.approach, p0=hertz.p0, U0=U0, f_t=scene.f_t,
+    summary = dict(a=hertz.a, d=d, p0=hertz.p0, U0=U0, f_t=scene.f_t,
                    w=scene.amplitude / hertz.a, W=scene.amplitude, dW_used=path.dW, nx=grid.nx, ny=grid.ny,
                    elements=grid.size, steps=n_done, steps_planned=path.n_steps,
                    iterations=int(np.sum(history["iterations"])) if n_done else 0, wall_time=wall)
@@ -65,12 +67,17 @@ def format_summary(result: RunResult) -> str:
     lines = []
     if len(h.get("step", [])):
         a_eq = math.sqrt(h["contact_area"][-1] / math.pi)
+        shape = d.scene.shape
+        ref = {"sphere": "Hertz", "ellipsoid": "Hertz", "cylinder": "2-D line contact",
+               "file": "estimated (MDR of the radial envelope)"}.get(shape, "MDR")
+        scale = {"sphere": "Hertz p0", "ellipsoid": "Hertz p0", "cylinder": "2-D line contact p0"}.get(
+            shape, "scale p0 = 3 Fn/(2 pi a^2)")
         pressure = ""
         if len(d.field_steps):
-            pressure = (f", max pressure {float(np.max(d.fields['p'][-1])):.5f} MPa "
-                        f"(Hertz p0 = {s['p0']:.5f} MPa)")
-        lines.append(f"contact radius {a_eq:.4f} mm (equivalent; Hertz a = {s['a']:.4f} mm), approach "
-                     f"{h['approach'][-1]:.6f} mm (Hertz d = {s['d']:.6f} mm){pressure}")
+            pressure = (f", max pressure {float(np.max(d.fields['p'][-1])):.5f} MPa ({scale} = {s['p0']:.5f} MPa)")
+        lines.append(f"contact radius {a_eq:.4f} mm (equivalent; {ref} a = {s['a']:.4f} mm), approach "
+                     f"{h['approach'][-1]:.6f} mm ({'first step' if shape in ('cylinder', 'file') else ref} d = {s['d']:.6f} mm)"
+                     f"{pressure}")
         model = (f"MDR model, {s['springs']} springs" if s.get("fidelity") == "mdr"
                  else f"grid {s['nx']} x {s['ny']}")
         lines.append(f"steps {s['steps']}/{s['steps_planned']}, iterations {s['iterations']} "

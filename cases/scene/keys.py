@@ -33,9 +33,26 @@ class Materials:
 
 @dataclass
 class Geometry:
-    R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="sphere radius")
+    # shape left out: "sphere" with R, "ellipsoid" with Rx and Ry (the keys each shape takes:
+    # cases.scene.geometry.SHAPE_KEYS)
+    shape: str | None = _spec(None, choices=("sphere", "ellipsoid", "cone", "power", "flat_rounded", "cylinder",
+                                             "file"),
+                              doc="profile shape (default: sphere with R, ellipsoid with Rx, Ry)")
+    R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                            doc="sphere radius; power law R; edge radius of flat_rounded; cylinder radius")
     Rx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="radius in x")
     Ry: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="radius in y")
+    slope: float | None = _spec(None, 0, 90, lo_open=True, hi_open=True, unit="deg",
+                                doc="cone flank angle against the undeformed surface")
+    n: float | None = _spec(None, 1, 20, doc="exponent of the power law h = r^n/(n R^(n-1))")
+    b: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm", doc="flat radius of flat_rounded")
+    length: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                 doc="length of the cylinder's straight part")
+    edge_R: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                 doc="radius of the cylinder's rounded ends")
+    axis: str | None = _spec(None, choices=("x", "y"), doc="direction of the cylinder's axis (default x)")
+    path: str | None = _spec(None, doc="profile file of shape = 'file' (.npz x, y, h; .npy or .csv rows x, y, h)")
+    sha256: str | None = _spec(None, doc="SHA-256 of the profile file (filled in when left out, checked when given)")
 
 
 @dataclass
@@ -100,6 +117,10 @@ def check_key(sec, f, value):
     if meta.get("choices"):
         if value not in meta["choices"]:
             raise SceneError(f"{key} = {value!r}: allowed values are {list(meta['choices'])}")
+        return value
+    if f.type == "str | None":   # text keys without choices (geometry.path, geometry.sha256)
+        if not isinstance(value, str) or not value:
+            raise SceneError(f"{key} = {value!r}: expected a non-empty string")
         return value
     if f.name == "levels":
         if not isinstance(value, list) or not all(_is_number(v) for v in value):

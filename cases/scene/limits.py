@@ -41,7 +41,7 @@ class SceneLimits:
 
     def _resolve_resolution(self):
         """Fill an omitted grid.dx and motion.dW with the recommended resolution (RESOLUTION_PER_RADIUS)."""
-        derived = set()
+        derived = set(self.derived)            # keys derived before (geometry.sha256 of a file profile)
         if self.grid.dx is None:
             self.grid = replace(self.grid, dx=_round_sig(min(self.semi_axes) / RESOLUTION_PER_RADIUS, 2))
             derived.add("grid.dx")

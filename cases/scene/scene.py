@@ -3,7 +3,8 @@
 Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
 
     [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate)
-    [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry)
+    [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry), or shape with its keys:
+                cone (slope), power (n, R), flat_rounded (b, R) (cases.scene.geometry)
     [load]      Fn; mu; ft (= Ft/(mu Fn)) or Ft; load_angle (direction of Ft from the x axis);
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
                 ramp_steps increments: unloading and reversal)
@@ -32,6 +33,8 @@ from importlib import resources
 
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
+from rollcontact.cases.scene.geometry import (
+    SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
     SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, SECTION_ATTR, check_key)
 # re-exported: the names other modules import from cases.scene
@@ -67,8 +70,9 @@ class Scene(SceneLimits):
     # --- construction ----------------------------------------------------------------------------
     @classmethod
     def from_dict(cls, data: dict, name: str = "scene", run_limits: bool = True) -> "Scene":
-        """run_limits=False skips the checks that only a new run needs (grid resolution, number of steps), for
-        reading the scene stored in a run file written before those checks existed."""
+        """run_limits=False skips the checks that only a new run needs (grid resolution, number of steps, a file
+        profile's file and checksum), for reading the scene stored in a run file (written before those checks
+        existed, or whose profile file is elsewhere now)."""
         if not isinstance(data, dict):
             raise SceneError("scene: expected a table of sections")
         unknown = set(data) - set(SECTIONS)
@@ -87,7 +91,12 @@ class Scene(SceneLimits):
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
         scene._check_consistency()
+        if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
+            scene.geometry, filled = checked_file_geometry(scene.geometry)
+            scene.derived = frozenset({"geometry.sha256"} if filled else ())
         scene._resolve_resolution()
+        if scene.shape == "file" and run_limits:
+            check_file_coverage(scene)
         if run_limits:
             scene._check_resolution()
             scene._check_steps()
@@ -100,14 +109,18 @@ class Scene(SceneLimits):
             text = path.read_text()
         except OSError as exc:
             raise SceneError(f"scene file {path}: {exc.strerror}") from None
-        return cls.from_toml_text(text, name=path.stem)
+        return cls.from_toml_text(text, name=path.stem, base=path.parent)
 
     @classmethod
-    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True) -> "Scene":
+    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True, base=None) -> "Scene":
+        """base: the folder a relative [geometry] path is relative to (the scene file's; default the current one)."""
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene {name}: not valid TOML ({exc})") from None
+        geometry = data.get("geometry")
+        if base is not None and isinstance(geometry, dict) and isinstance(geometry.get("path"), str):
+            geometry["path"] = str(Path(base) / Path(geometry["path"]).expanduser())
         return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
@@ -161,16 +174,16 @@ class Scene(SceneLimits):
                 section.pop(other.partition(".")[2], None)
             section[name] = value
             given[f"{sec}.{name}"] = item
+        if "geometry.shape" in given:  # a new shape: the old shape's keys that it does not take are dropped
+            keep = SHAPE_KEYS.get(data["geometry"]["shape"], ())
+            for name in list(data["geometry"]):
+                if name != "shape" and name not in keep and f"geometry.{name}" not in given:
+                    del data["geometry"][name]
         return Scene.from_dict(data, name=self.name)
 
     def _check_consistency(self):
-        g, ld, mo = self.geometry, self.load, self.motion
-        if g.R is not None and (g.Rx is not None or g.Ry is not None):
-            raise SceneError("[geometry] give either R, or Rx and Ry, not both")
-        if g.R is None and (g.Rx is None) != (g.Ry is None):
-            raise SceneError("[geometry] Rx and Ry must be given together")
-        if g.R is None and g.Rx is None:
-            raise SceneError("[geometry] R (or Rx and Ry) is required, in mm")
+        ld, mo = self.load, self.motion
+        resolve_shape(self.geometry)
         if ld.ft is not None and ld.Ft is not None:
             raise SceneError("[load] give either ft (= Ft/(mu Fn)) or Ft (N), not both")
         if ld.Ft is not None and ld.Ft > ld.mu * ld.Fn * (1 + 1e-12):
@@ -186,24 +199,56 @@ class Scene(SceneLimits):
         return MaterialPair.from_moduli(m.E1, m.nu1, m.E2, m.nu2)
 
     @property
+    def shape(self) -> str:
+        """The geometry's shape ('sphere', 'ellipsoid', 'cone', 'power', 'flat_rounded'; cases.scene.geometry)."""
+        return resolve_shape(self.geometry)
+
+    @property
+    def profile(self):
+        """The undeformed profile h(X, Y, centre) (mm) that the solvers take."""
+        return shape_profile(self.geometry, self.shape)
+
+    @property
+    def normal_reference(self):
+        """Closed-form normal contact under Fn (a, approach, p0): Hertz, or the exact MDR solution of the shape."""
+        return normal_reference(self.geometry, self.shape, self.material_pair.E_star, self.load.Fn)
+
+    @property
+    def tangential_reference(self):
+        """Closed-form Cattaneo-type loading of `normal_reference` (U0, stick_radius, shift)."""
+        return tangential_reference(self.normal_reference, self.load.mu, self.material_pair.G_star)
+
+    @property
     def radii(self) -> tuple[float, float]:
+        """(Rx, Ry) of a sphere or an ellipsoid (mm); SceneError for the other shapes."""
         g = self.geometry
+        if self.shape not in ("sphere", "ellipsoid"):
+            raise SceneError(f"[geometry] shape = {g.shape!r} has no radii Rx, Ry")
         return (g.R, g.R) if g.R is not None else (g.Rx, g.Ry)
 
     @property
     def equivalent_radius(self) -> float:
-        """sqrt(Rx Ry) (mm): the radius of the sphere with the same Gaussian curvature."""
+        """sqrt(Rx Ry) (mm): the radius of the sphere with the same Gaussian curvature (sphere and ellipsoid)."""
         rx, ry = self.radii
         return math.sqrt(rx) * math.sqrt(ry)  # not sqrt(rx ry): that overflows from rx ry > 1e308
 
     @property
     def contact_radius(self) -> float:
-        """Hertz contact radius a of the equivalent sphere (mm), the unit of w."""
+        """Contact radius a (mm), the unit of w: Hertz's of the equivalent sphere for a sphere or an ellipsoid, the
+        MDR's exact radius of the profile under Fn for the other (axisymmetric) shapes."""
+        if self.shape not in ("sphere", "ellipsoid"):
+            return self.normal_reference.a        # the MDR's a; the cylinder's half-width under Fn/length
         return (3.0 * self.load.Fn * self.equivalent_radius / (4.0 * self.material_pair.E_star)) ** (1 / 3)
 
     @property
     def semi_axes(self) -> tuple[float, float]:
-        """Hertz semi-axes (mm) along x and y: exact for a sphere, c (Rx/Ry)^(+-1/3) for an ellipse."""
+        """Contact semi-axes (mm) along x and y: exact for a sphere and the axisymmetric shapes (a, a),
+        Hertz's estimate c (Rx/Ry)^(+-1/3) for an ellipse, an estimate for the cylinder (cylinder_semi_axes)."""
+        if self.shape == "cylinder":
+            return cylinder_semi_axes(self.geometry, self.material_pair.E_star, self.load.Fn)
+        if self.shape not in ("sphere", "ellipsoid"):
+            a = self.contact_radius
+            return (a, a)
         rx, ry = self.radii
         c = self.contact_radius
         return (c, c) if rx == ry else (c * (rx / ry) ** (1 / 3), c * (ry / rx) ** (1 / 3))

@@ -1,8 +1,9 @@
 """Compiled MDR step (numba, cached): the kernels behind `solver.mdr.simulate_mdr` (theory.md §8.2).
 
-Numba twins of `solver.mdr.step` for the gap (s - centre)^2 / R of the sphere (s, centre, R, d, U, anchors
-and bounds in mm; the force targets are Fn/(E* ds) and Ft/(G* ds), mm), and one whole step of the spring row
-in place on the anchors.  Errors are returned as status codes, not raised.
+Numba twins of `solver.mdr.step` for the gaps g_i of the springs (the sphere's (s - centre)^2 / R, or any
+axisymmetric profile's MDR profile g(s - centre) computed by the caller; s, centre, R, d, U, anchors and bounds
+in mm; the force targets are Fn/(E* ds) and Ft/(G* ds), mm), and one whole step of the spring row in place on
+the anchors.  Errors are returned as status codes, not raised.
 """
 import numpy as np
 from numba import njit
@@ -10,27 +11,25 @@ from numba import njit
 
 # ------------------------------------------------------------------- compiled step (numba, cached)
 @njit(cache=True)
-def _approach_kernel(s, centre, R, target, d_guess):
-    """Numba twin of `approach_for_force` for the gap (s - centre)^2/R; returns (d, n_contact) or (nan, -1).
+def _approach_kernel(gap, target, d_guess):
+    """Numba twin of `approach_for_force` for the gaps g_i (mm); returns (d, n_contact) or (nan, -1).
 
     Starts from d_guess (the previous step's approach): from the left, the first Newton step of the convex
     force-approach function lands right of the root; from there the iterates decrease monotonically.
     """
     gmin = np.inf
-    for i in range(s.size):
-        g = (s[i] - centre) ** 2 / R
-        if g < gmin:
-            gmin = g
+    for i in range(gap.size):
+        if gap[i] < gmin:
+            gmin = gap[i]
     d = d_guess if d_guess > gmin else gmin + target
     count = -1
     for _ in range(200):
         n = 0
         acc = 0.0
-        for i in range(s.size):
-            g = (s[i] - centre) ** 2 / R
-            if g < d:
+        for i in range(gap.size):
+            if gap[i] < d:
                 n += 1
-                acc += g
+                acc += gap[i]
         if n == count:
             return d, n
         count = n
@@ -144,17 +143,26 @@ def _walk_break_points(v, b, target, lo, flo, hi):
 
 
 @njit(cache=True)
-def _step_kernel(s, anchor, centre, R, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf):
-    """One MDR step in place on `anchor`; returns (d, U, n_contact, n_stick, status).
+def _step_kernel(s, anchor, centre, R, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf, gap_buf):
+    """One MDR step of the sphere, gap (s - centre)^2/R (in gap_buf), in place on `anchor`: `_step_gap_kernel`."""
+    for i in range(s.size):
+        gap_buf[i] = (s[i] - centre) ** 2 / R
+    return _step_gap_kernel(gap_buf, anchor, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf)
+
+
+@njit(cache=True)
+def _step_gap_kernel(gap, anchor, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf):
+    """One MDR step for the gaps g_i (mm) of the springs in place on `anchor`; returns (d, U, n_contact,
+    n_stick, status).
 
     status 0 ok, 1 gross sliding (anchor untouched), 2 normal problem did not settle.
     """
-    d, n_contact = _approach_kernel(s, centre, R, target_n, d_guess)
+    d, n_contact = _approach_kernel(gap, target_n, d_guess)
     if n_contact < 0:
         return np.nan, np.nan, 0, 0, 2
     m = 0
-    for i in range(s.size):
-        uz = d - (s[i] - centre) ** 2 / R
+    for i in range(gap.size):
+        uz = d - gap[i]
         if uz > 0.0:
             v_buf[m] = anchor[i]
             b_buf[m] = ratio * uz
@@ -163,8 +171,8 @@ def _step_kernel(s, anchor, centre, R, target_n, d_guess, ratio, target_t, U_gue
     if status != 0:
         return d, np.nan, n_contact, 0, status
     n_stick = 0
-    for i in range(s.size):
-        uz = d - (s[i] - centre) ** 2 / R
+    for i in range(gap.size):
+        uz = d - gap[i]
         bound = ratio * uz if uz > 0.0 else 0.0
         defl = min(max(U - anchor[i], -bound), bound)
         anchor[i] = U - defl

@@ -28,7 +28,7 @@ reversal points are hit exactly (4 ceil(W/dW) steps per period).  U is recorded 
 at the end of every period and classified by `solver.rolling.shakedown.classify`.
 
 Units mm, N, MPa.  Normalisations (seed Eq. 9, pitfall P3): f_t = Ft/(mu Fn), u = U/U0 with
-U0 = mu E* d/G* (d, a: Hertz values), w = W/a.
+U0 = mu E* d/G* (d, a: Hertz values; for a `profile`, its exact MDR values), w = W/a.
 
 Modules: the step is solved exactly by the compiled kernels of `solver.mdr._kernels` (used here) and by
 their numpy references in `solver.mdr.step`; `solver.mdr.bisection` finds the simulated shakedown limit.
@@ -44,7 +44,8 @@ import numpy as np
 from rollcontact.bem.errors import ConvergenceError, InputError
 from rollcontact.solver.analytic import HertzSphere
 from rollcontact.solver.rolling.shakedown import DEFAULT_TOL, Classification, classify, gross_sliding
-from rollcontact.solver.mdr._kernels import _step_kernel
+from rollcontact.solver.mdr._kernels import _step_gap_kernel, _step_kernel
+from rollcontact.solver.mdr.exact import MDRContact
 
 DEFAULT_N_SPRINGS = 4001
 
@@ -127,11 +128,13 @@ class _LoadPath(NamedTuple):
     nq: int
 
 
-def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1, n_springs=None,
-                 ds=None, shakedown_tol=DEFAULT_TOL) -> MDRResult:
+def simulate_mdr(*, R=None, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1, n_springs=None,
+                 ds=None, shakedown_tol=DEFAULT_TOL, profile=None) -> MDRResult:
     """Run the 1-D MDR model of oscillating rolling (theory §8.2); see the module docstring.
 
-    R: sphere radius (mm); E_star, G_star: contact moduli E*, G* (MPa, bem.materials.MaterialPair);
+    R: sphere radius (mm), or profile: any axisymmetric profile of `solver.rolling.axisymmetric` (cone, power
+    law, rounded flat punch), whose MDR profile g(s - c_n) then replaces (s - c_n)^2/R and whose exact MDR
+    contact radius and approach (`solver.mdr.exact.MDRContact`) replace Hertz's a and d; E_star, G_star: contact moduli E*, G* (MPa, bem.materials.MaterialPair);
     Fn > 0 (N), mu > 0, 0 <= Ft (N; Ft > mu Fn is recorded as 'gross_sliding'); W >= 0 amplitude of the
     centre (mm; W = 0: no oscillation), dW > 0 requested centre step (mm), periods >= 0.
     Springs: s_i = i ds, |i| <= N, covering [-(a + W) - ds, a + W + ds] at least, so that every spring that
@@ -139,16 +142,19 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
     default 4001, then ds = (a + W) / ((n_springs - 1)/2 - 1)).
     shakedown_tol: tolerance on the per-period increment |dU|/U0 passed to solver.rolling.shakedown.classify.
     """
-    R, E_star, G_star, Fn, mu, dW, periods, ramp_steps = _checked_inputs(R, E_star, G_star, Fn, mu, Ft, W, dW,
-                                                                         periods, ramp_steps)
-    hertz = HertzSphere(R, E_star, Fn)
+    if (R is None) == (profile is None):
+        raise InputError("give either R (a sphere) or profile (an axisymmetric profile), not both or neither")
+    R, E_star, G_star, Fn, mu, dW, periods, ramp_steps = _checked_inputs(1.0 if R is None else R, E_star, G_star,
+                                                                         Fn, mu, Ft, W, dW, periods, ramp_steps)
+    hertz = HertzSphere(R, E_star, Fn) if profile is None else MDRContact(profile, E_star, Fn)
     a, d_hertz = hertz.a, hertz.approach
     U0 = mu * E_star * d_hertz / G_star
     if W >= a:
         raise InputError(f"W = {W!r} mm >= a = {a:.6g} mm: the seed's model needs w = W/a < 1 (seed Eq. 10)")
     s, ds = _springs(a + W, ds, n_springs)
     path = _load_path(Ft, float(W), dW, periods, ramp_steps)
-    hist, done, failure = _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz)
+    gap = None if profile is None else profile.mdr
+    hist, done, failure = _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz, gap)
     history = {key: val[:done] for key, val in hist.items()}
     history["step"] = np.arange(done)
     history["period"] = path.period[:done]
@@ -215,8 +221,9 @@ def _load_path(Ft, W, dW, periods, ramp_steps):
     return _LoadPath(Ft_path, c_path, period_path, n_load, dW_used, nq)
 
 
-def _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz):
-    """Step the spring row along the load path (one `_step_kernel` call per step, anchors updated in place).
+def _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz, gap=None):
+    """Step the spring row along the load path (one `_step_kernel` call per step, anchors updated in place; with
+    `gap` (g(s) of an axisymmetric profile) the gaps g(s_i - c_n) are computed here and `_step_gap_kernel` steps).
 
     Returns the histories (W, approach, U, Ft, contact_length, stick_length; NaN after a failure), the number of
     steps done and the failure message (None, or the step without tangential equilibrium: gross sliding).
@@ -226,15 +233,20 @@ def _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz):
     hist = {key: np.full(n_steps, np.nan) for key in
             ("W", "approach", "U", "Ft", "contact_length", "stick_length")}
     anchor = np.zeros_like(s)
-    v_buf, b_buf = np.empty_like(s), np.empty_like(s)
+    v_buf, b_buf, gap_buf = np.empty_like(s), np.empty_like(s), np.empty_like(s)
     U = 0.0
     ratio = mu * E_star / G_star               # Coulomb bound on the deflection: b = ratio * u_z (mm)
     target_n = Fn / (E_star * ds)
     d_prev = d_hertz
     for n in range(n_steps):
         c, Ft = path.centre[n], path.Ft[n]
-        d, U_new, n_contact, n_stick, status = _step_kernel(
-            s, anchor, c, R, target_n, d_prev, ratio, Ft / (G_star * ds), U, v_buf, b_buf)
+        if gap is None:
+            d, U_new, n_contact, n_stick, status = _step_kernel(
+                s, anchor, c, R, target_n, d_prev, ratio, Ft / (G_star * ds), U, v_buf, b_buf, gap_buf)
+        else:
+            d, U_new, n_contact, n_stick, status = _step_gap_kernel(
+                np.asarray(gap(s - c), dtype=float), anchor, target_n, d_prev, ratio, Ft / (G_star * ds), U,
+                v_buf, b_buf)
         if status == 2:
             raise ConvergenceError("MDR normal problem: contact set did not settle", solver="simulate_mdr",
                                    iterations=200, regime=f"step {n}, centre {c:.6g} mm")

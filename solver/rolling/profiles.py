@@ -5,6 +5,7 @@ centre c = (cx, cy) may move in any direction and the profile may be a quadric, 
 array sampled on its own grid (interpolated). Lengths in mm.
 """
 from dataclasses import dataclass
+import math
 from typing import Callable
 
 import numpy as np
@@ -59,3 +60,29 @@ class ArrayProfile:
     def __call__(self, X, Y, centre=(0.0, 0.0)):
         pts = np.stack([np.ravel(Y - centre[1]), np.ravel(X - centre[0])], axis=-1)
         return self._interp(pts).reshape(np.shape(X))
+
+
+@dataclass(frozen=True)
+class RollerProfile:
+    """A cylindrical roller of radius R whose axis lies along x (axis = "x") or y, with a straight part of
+    `length` and ends rounded with radius edge_R (to the leading order of the circle): along the axis t and across
+    it n (relative to the centre), h = n^2/(2R) + max(|t| - length/2, 0)^2/(2 edge_R). Lengths in mm."""
+
+    R: float
+    length: float
+    edge_R: float
+    axis: str = "x"
+
+    def __post_init__(self):
+        for name in ("R", "length", "edge_R"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+                raise InputError(f"roller {name} = {value!r} mm: must be finite and > 0")
+        if self.axis not in ("x", "y"):
+            raise InputError(f"roller axis = {self.axis!r}: allowed values are 'x', 'y'")
+
+    def __call__(self, X, Y, centre=(0.0, 0.0)):
+        x, y = X - centre[0], Y - centre[1]
+        t, n = (x, y) if self.axis == "x" else (y, x)
+        end = np.maximum(np.abs(t) - 0.5 * self.length, 0.0)
+        return n * n / (2.0 * self.R) + end * end / (2.0 * self.edge_R)

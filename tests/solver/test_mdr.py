@@ -182,7 +182,7 @@ def test_compiled_kernels_agree_with_the_numpy_reference():
     for centre in (0.0, 0.37, -1.1):
         gap = (s - centre) ** 2 / 40.0
         d_ref = approach_for_force(gap, 21.19, PAIR.E_star, s[1] - s[0])
-        d_nb, _ = _approach_kernel(s, centre, 40.0, 21.19 / (PAIR.E_star * (s[1] - s[0])), 0.5)
+        d_nb, _ = _approach_kernel(gap, 21.19 / (PAIR.E_star * (s[1] - s[0])), 0.5)
         assert d_nb == pytest.approx(d_ref, rel=1e-13)
 
 
