@@ -1,0 +1,13 @@
+"""Rolling with creepage and spin (theory.md §7.3, §11.5), in Kalker's sign convention (`kalker`).
+
+    kalker   Kalker's linear-theory coefficients C11, C22, C23 (CONTACT's table and interpolation)
+    steady   the steady rolling problem in contact-fixed coordinates, Kalker's element Gauss-Seidel
+    _sweep   its compiled element loops
+
+Units: mm, N, MPa; creepages xi, eta dimensionless, spin phi in 1/mm.
+"""
+from rollcontact.solver.creep.kalker import kalker_coefficients, linear_creep_forces
+from rollcontact.solver.creep.steady import SteadyParams, SteadyResult, SteadyRolling, solve_steady
+
+__all__ = ["SteadyParams", "SteadyResult", "SteadyRolling", "kalker_coefficients", "linear_creep_forces",
+           "solve_steady"]
