@@ -99,7 +99,7 @@ def kalker_coefficients(a_over_b: float, nu: float) -> tuple[float, float, float
     order = np.argsort(rows[:, 0])
     rows = rows[order]
     table = np.array([np.interp(g, rows[:, 0], rows[:, k]) for k in range(1, 10)])
-    return tuple(_lagrange_inverse(table[3 * m:3 * m + 3], nu) for m in range(3))
+    return tuple(float(_lagrange_inverse(table[3 * m:3 * m + 3], nu)) for m in range(3))
 
 
 def linear_creep_forces(a, b, G, nu, xi, eta=0.0, phi=0.0, C33=None):
