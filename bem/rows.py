@@ -5,7 +5,8 @@ the (ny, nx) grid at a time; before the next row starts, the displacements of ev
 change. Row j' receives the 1-D aperiodic convolution along x of the change with the kernel row of offset
 j' - j: with the kernel rows' spectra computed once, that is one forward transform of the change (two fields)
 and one batch of inverse transforms (two fields times the target rows), O(ny L log L) per row instead of the
-O(ny nx^2) of direct sums. Plans are pyfftw objects with FFTW_ESTIMATE (1-D transforms of a few hundred points:
+O(ny nx^2) of direct sums. The convolution is circular with period L >= 2 nx - 1 (the kernel row's support):
+the nx outputs read back are not reached by the wrap-around. Plans are pyfftw objects with FFTW_ESTIMATE (1-D transforms of a few hundred points:
 measuring them costs more than it saves). Units: kernels in mm/MPa, changes in MPa, displacements in mm.
 """
 import numba as nb
@@ -13,6 +14,15 @@ import numpy as np
 
 from rollcontact.bem._fftw import pyfftw
 from rollcontact.bem.operator import fft_length
+
+
+@nb.njit(cache=True, nogil=True)
+def _accumulate(disp, first, result, nx):
+    """disp[k, first + r, i] += result[k, r, i] for i < nx."""
+    for k in range(2):
+        for r in range(result.shape[1]):
+            for i in range(nx):
+                disp[k, first + r, i] += result[k, r, i]
 
 
 @nb.njit(cache=True, nogil=True)
@@ -36,8 +46,13 @@ class RowInfluence:
     def __init__(self, kxx, kxy, kyy):
         rows2, cols2 = kxx.shape
         self.ny, self.nx = (rows2 + 1) // 2, (cols2 + 1) // 2
-        self.length = fft_length(3 * self.nx - 2)  # >= kernel + change - 1: no wrap-around
-        self.spectra = tuple(np.ascontiguousarray(np.fft.rfft(k, self.length, axis=1)) for k in (kxx, kxy, kyy))
+        self.length = fft_length(2 * self.nx - 1)  # the kernel row's support: no wrap onto the outputs read
+        wrapped = np.arange(-(self.nx - 1), self.nx) % self.length
+        self.spectra = []
+        for k in (kxx, kxy, kyy):
+            circ = np.zeros((rows2, self.length))
+            circ[:, wrapped] = k
+            self.spectra.append(np.ascontiguousarray(np.fft.rfft(circ, axis=1) / self.length))  # 1/L of the c2r
         nf = self.length // 2 + 1
         self._change = pyfftw.zeros_aligned((2, self.length), dtype=np.float64)
         self._spec = pyfftw.empty_aligned((2, nf), dtype=np.complex128)
@@ -64,4 +79,4 @@ class RowInfluence:
         plan = self._inverse(rows.stop - rows.start)
         _row_products(*self.spectra, rows.start - j + ny - 1, self._spec, plan.input_array)
         plan.execute()
-        disp[:, rows] += plan.output_array[:, :, nx - 1:2 * nx - 1] / self.length
+        _accumulate(disp, rows.start, plan.output_array, nx)

@@ -8,6 +8,8 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
                 ramp_steps increments: unloading and reversal)
     [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW
+    [rolling]   mode ("steady"), xi, eta, phi (1/mm), direction: rolling on with creepage and spin, in
+                place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
@@ -33,7 +35,7 @@ from importlib import resources
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.keys import (
-    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, SECTION_ATTR, check_key)
+    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
@@ -57,6 +59,7 @@ class Scene(SceneLimits):
     geometry: Geometry = field(default_factory=Geometry)
     load: Load = field(default_factory=Load)
     motion: Motion = field(default_factory=Motion)
+    rolling: Rolling = field(default_factory=Rolling)
     grid: GridSpec = field(default_factory=GridSpec)
     solver: SolverSpec = field(default_factory=SolverSpec)
     output: Output = field(default_factory=Output)
@@ -86,6 +89,7 @@ class Scene(SceneLimits):
             kwargs = {k: check_key(sec, names[k], v) for k, v in values.items()}
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
+        scene._check_rolling(data)
         scene._check_consistency()
         scene._resolve_resolution()
         if run_limits:
@@ -111,8 +115,11 @@ class Scene(SceneLimits):
         return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
+        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]."""
         out = {}
         for sec in SECTIONS:
+            if sec == ("motion" if self.rolling_on else "rolling"):
+                continue
             obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
@@ -143,7 +150,7 @@ class Scene(SceneLimits):
         data = self.to_dict()
         for key in self.derived:  # re-derived from the overridden scene unless set explicitly
             sec, name = key.split(".")
-            data[sec].pop(name, None)
+            data.get(sec, {}).pop(name, None)    # [motion] is left out of a rolling scene's dict
         given = {}  # section.key -> the --set item that gave it
         for item in assignments:
             if "=" not in item or "." not in item.split("=", 1)[0]:
@@ -162,6 +169,33 @@ class Scene(SceneLimits):
             section[name] = value
             given[f"{sec}.{name}"] = item
         return Scene.from_dict(data, name=self.name)
+
+    @property
+    def rolling_on(self) -> bool:
+        """True for a scene that rolls on with creepages ([rolling] mode other than 'none')."""
+        return self.rolling.mode != "none"
+
+    def _check_rolling(self, data: dict):
+        """A [rolling] scene has no [motion], no tangential load and the BEM model."""
+        if not self.rolling_on:
+            if set(data.get("rolling", {})) - {"mode"}:
+                raise SceneError("[rolling] mode = 'none' with other [rolling] keys: set mode = 'steady' to roll "
+                                 "with creepages, or leave the [rolling] section out")
+            return
+        if "motion" in data:
+            raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
+                             "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
+        ld = self.load
+        for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
+            if value is not None:
+                raise SceneError(f"[load] {key} = {value!r} with [rolling]: the tangential force of a rolling "
+                                 "scene follows from its creepages [rolling] xi, eta, phi; remove load." + key)
+        if ld.levels:
+            raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
+                             "load.levels")
+        if self.solver.fidelity != "bem":
+            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
+                             "boundary elements; allowed value is 'bem'")
 
     def _check_consistency(self):
         g, ld, mo = self.geometry, self.load, self.motion

@@ -26,6 +26,7 @@ from rollcontact.bem.errors import ContactEdgeError, ConvergenceError, InputErro
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.influence import influence_coefficients
 from rollcontact.bem.materials import MaterialPair
+from rollcontact.bem.operator import fft_length
 from rollcontact.bem.rows import RowInfluence
 from rollcontact.solver.creep import _sweep
 
@@ -74,9 +75,10 @@ class SteadyResult:
 
 class SteadyRolling:
     """The per-grid set-up of the steady solver: dense Toeplitz tangential kernels of `materials` on `grid`
-    (3 arrays of (2 ny - 1) x (2 nx - 1) floats), built once and shared by every solve on that grid."""
+    (3 arrays of (2 ny - 1) x (2 nx - 1) floats), built once and shared by every solve on that grid.
+    coupled: include the tangential displacement of the pressure (Kalker's K; default: when K != 0)."""
 
-    def __init__(self, grid: Grid, materials: MaterialPair):
+    def __init__(self, grid: Grid, materials: MaterialPair, coupled: bool | None = None):
         self.grid, self.materials = grid, materials
         ny, nx = grid.shape
         X, Y = np.meshgrid(np.arange(-(nx - 1), nx) * grid.dx, np.arange(-(ny - 1), ny) * grid.dy)
@@ -85,13 +87,27 @@ class SteadyRolling:
         self.kernels = tuple(np.ascontiguousarray(k[c]) for c in ("xx", "xy", "yy"))
         self.rows = (np.ascontiguousarray(k["xx"][ny - 1]), np.ascontiguousarray(k["yy"][ny - 1]))
         self.row_influence = RowInfluence(*self.kernels)
-        self._coupling = (k["xz"], k["yz"]) if materials.K != 0.0 else None
+        coupled = materials.K != 0.0 if coupled is None else bool(coupled)
+        self._coupling = (k["xz"], k["yz"]) if coupled and materials.K != 0.0 else None
+        self._spectra2d = None  # of the circular embedding, on the first `displacement`
 
     def displacement(self, traction):
-        """u1 - u2 (mm), shape (2, ny, nx), from the traction on body 1 (MPa): the Toeplitz product by FFT."""
-        kxx, kxy, kyy = self.kernels
-        ux = _convolve(kxx, traction[0]) + _convolve(kxy, traction[1])
-        uy = _convolve(kxy, traction[0]) + _convolve(kyy, traction[1])
+        """u1 - u2 (mm), shape (2, ny, nx), from the traction on body 1 (MPa): the Toeplitz product, by FFT on the
+        circular embedding of period (fft_length(2 ny - 1), fft_length(2 nx - 1)) (no wrap onto the grid)."""
+        ny, nx = self.grid.shape
+        if self._spectra2d is None:
+            self._period = (fft_length(2 * ny - 1), fft_length(2 * nx - 1))
+            rows, cols = np.ix_(np.arange(-(ny - 1), ny) % self._period[0], np.arange(-(nx - 1), nx) % self._period[1])
+            self._spectra2d = []
+            for k in self.kernels:
+                circ = np.zeros(self._period)
+                circ[rows, cols] = k
+                self._spectra2d.append(np.fft.rfft2(circ))
+        sxx, sxy, syy = self._spectra2d
+        fx = np.fft.rfft2(traction[0], self._period)
+        fy = np.fft.rfft2(traction[1], self._period)
+        ux = np.fft.irfft2(sxx * fx + sxy * fy, self._period)[:ny, :nx]
+        uy = np.fft.irfft2(sxy * fx + syy * fy, self._period)[:ny, :nx]
         return np.stack([ux, uy])
 
     def pressure_displacement(self, pressure):
@@ -164,10 +180,12 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
 
 
 def _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega):
-    """One Gauss-Seidel sweep over the contact rows (`_sweep.row_sweep`), each row's change of dp carried to the
-    other contact rows before the next row starts (so the sweep is an exact element Gauss-Seidel)."""
+    """One Gauss-Seidel sweep over the contact rows (`_sweep.row_sweep`), in increasing y. Each row's change of dp
+    is carried to the rows still to come in this sweep (1-D FFTs, `bem.rows`), so that every element sees the
+    latest state: an exact element Gauss-Seidel. The rows already done get it at the end of the sweep, when
+    disp = A dp is recomputed by one 2-D FFT product (half the 1-D transforms of carrying it to every row)."""
     rows = np.nonzero(hi > lo)[0]
-    span = slice(int(rows[0]), int(rows[-1]) + 1)
+    last = int(rows[-1])
     row_xx, row_yy = problem.rows
     inv_dx = 1.0 / problem.grid.dx
     change = 0.0
@@ -175,7 +193,9 @@ def _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega):
         start = dp[:, j].copy()
         change = max(change, _sweep.row_sweep(j, rigid, tau, dp, status, bound, disp, row_xx, row_yy, inv_dx,
                                                lo[j], hi[j], start, omega))
-        problem.row_influence.add(disp, j, dp[:, j] - start, span)
+        if j < last:
+            problem.row_influence.add(disp, j, dp[:, j] - start, slice(int(j) + 1, last + 1))
+    disp[...] = problem.displacement(dp)
     return change
 
 
