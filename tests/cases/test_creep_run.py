@@ -132,3 +132,10 @@ def test_coupled_materials_converge_and_swapping_the_bodies_mirrors_the_forces()
     assert one.status == two.status == "complete"
     assert one.history["outer_iterations"][0] > 1
     assert two.summary["F_x"] == pytest.approx(-one.summary["F_x"], rel=1e-5)
+
+
+def test_plot_of_a_rolling_run_draws_its_traction_and_stick_maps(linear_run, tmp_path, capsys):
+    from rollcontact.cases.cli.main import main
+    assert main(["plot", str(linear_run.path), "-o", str(tmp_path)]) == 0
+    png = (tmp_path / f"{linear_run.path.stem}_maps.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20000
