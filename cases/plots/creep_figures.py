@@ -31,7 +31,7 @@ def plot_curve(table, out_dir, stem, overwrite=False):
 
 def is_creep_run(data) -> bool:
     """True for the result of a [rolling] scene (summary state 'steady', cases.run.creep_run)."""
-    return data.summary.get("state") == "steady" and "xi" in data.summary
+    return data.summary.get("state") in ("steady", "transient") and "xi" in data.summary
 
 
 def plot_creep_run(data, out_dir, stem, overwrite=False):
@@ -64,6 +64,6 @@ def plot_creep_run(data, out_dir, stem, overwrite=False):
         ax.set_aspect("equal")
         ax.annotate("", xy=(extent[1], extent[3]), xytext=(extent[1] - 0.2 * (extent[1] - extent[0]), extent[3]),
                     arrowprops=dict(arrowstyle="->", color="k"), annotation_clip=False)
-    fig.suptitle(f"steady rolling: xi = {s['xi']:.4g}, eta = {s['eta']:.4g}, phi = {s['phi']:.4g} 1/mm; "
+    fig.suptitle(f"{s['mode']} rolling: xi = {s['xi']:.4g}, eta = {s['eta']:.4g}, phi = {s['phi']:.4g} 1/mm; "
                  f"F_x = {s['F_x']:.4g} N, F_y = {s['F_y']:.4g} N (on the sphere)", fontsize=10)
     return save_figure(fig, out_dir, f"{stem}_maps", overwrite=overwrite)

@@ -24,14 +24,16 @@ import time
 
 import numpy as np
 
-from rollcontact.bem.errors import ConvergenceError, RollcontactError
+from rollcontact.bem.errors import ConvergenceError, InputError, RollcontactError
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.solver.creep import SteadyParams, SteadyRolling, linear_creep_forces, solve_steady
+from rollcontact.solver.creep import (SteadyParams, SteadyRolling, linear_creep_forces, roll_transient,
+                                      solve_steady)
 from rollcontact.solver.normal import NormalParams, solve_normal
+from rollcontact.solver.tangential import TangentialParams
 
 #: Outer iterations (normal, then steady tangential) allowed for coupled materials.
 MAX_OUTER = 30
@@ -72,7 +74,13 @@ def run_creep(scene: Scene, *, progress=None) -> RunResult:
         progress(f"steady rolling: grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = "
                  f"{grid.dy} mm, contact-fixed, x along the rolling direction {scene.rolling.direction} deg), "
                  f"coupling {'on' if op.coupled else 'off'}")
+    if scene.rolling.mode == "transient" and op.coupled:
+        raise InputError(f"[rolling] mode = 'transient' with coupled materials (Dundurs beta = {pair.beta:.3g}): "
+                         "not supported (the pressure would have to follow each step); use mode = 'steady', or "
+                         "[solver] coupling = \"off\"")
     try:
+        if scene.rolling.mode == "transient":
+            return _transient(scene, grid, op, pair, t_start)
         state = _solve(scene, grid, op, pair)
     except RollcontactError as exc:
         return RunResult(scene_toml=scene.to_toml(), status="failed", error=f"{type(exc).__name__}: {exc}",
@@ -139,3 +147,46 @@ def _result(scene, grid, op, state, wall):
                    steps_planned=1, iterations=int(history["iterations"][0]), wall_time=wall, fidelity="bem")
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=fields, field_steps=np.zeros(1, dtype=np.int64), summary=summary, version=version())
+
+
+def _transient(scene, grid, op, pair, t_start):
+    """Roll from rest over [rolling] distance (default 8 a) one element dx per step (solver.creep.roll_transient):
+    one history row per step, the fields of the last step, the summary at the end beside the steady state's."""
+    ro, tol = scene.rolling, scene.solver.tol
+    distance = ro.distance if ro.distance is not None else 8.0 * scene.semi_axes[0]
+    steps = max(1, math.ceil(distance / grid.dx - 1e-9))
+    normal = solve_normal(op, rolling_frame_profile(scene, grid), force=scene.load.Fn,
+                          params=NormalParams(tol=tol, max_iter=scene.solver.max_iter))
+    problem = SteadyRolling(grid, pair, coupled=False)
+    rolled = roll_transient(op, problem, normal.pressure, scene.load.mu, ro.xi, ro.eta, ro.phi, steps=steps,
+                            params=TangentialParams(tol=tol, max_iter=scene.solver.max_iter))
+    steady = solve_steady(problem, normal.pressure, scene.load.mu, ro.xi, ro.eta, ro.phi, initial=rolled.traction,
+                          params=SteadyParams(tol=tol, max_sweeps=max(scene.solver.max_iter, 100)))
+    wall = time.perf_counter() - t_start
+    dA, n = grid.cell_area, steps
+    e_r = (math.cos(math.radians(ro.direction)), math.sin(math.radians(ro.direction)))
+    contact_area = float((normal.pressure > 0).sum() * dA)
+    history = dict(step=np.arange(n), period=np.zeros(n, dtype=np.int64), W_x=rolled.distance * e_r[0],
+                   W_y=rolled.distance * e_r[1], approach=np.full(n, normal.approach), Fn=np.full(n, normal.force),
+                   contact_area=np.full(n, contact_area), stick_area=rolled.stick_cells * dA,
+                   U_x=np.full(n, math.nan), U_y=np.full(n, math.nan), F_x=-rolled.force[:, 0],
+                   F_y=-rolled.force[:, 1], iterations=rolled.products, normal_iterations=np.zeros(n, dtype=np.int64),
+                   tangential_iterations=rolled.products, outer_iterations=np.ones(n, dtype=np.int64),
+                   residual=np.zeros(n), wall_time=np.full(n, wall / n))
+    tau_sub = -rolled.traction
+    u = op.tangential(tau_sub[0], tau_sub[1])
+    fields = {"p": normal.pressure, "u_z": normal.displacement, "tau_x": tau_sub[0], "tau_y": tau_sub[1],
+              "slip_x": np.zeros(grid.shape), "slip_y": np.zeros(grid.shape), "u_x": u[0], "u_y": u[1],
+              "region": rolled.region}
+    a, b = scene.semi_axes
+    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), ro.xi, ro.eta, ro.phi)
+    summary = dict(state="transient", mode=ro.mode, xi=ro.xi, eta=ro.eta, phi=ro.phi, direction=ro.direction,
+                   distance=float(rolled.distance[-1]), F_x=float(rolled.force[-1, 0]), F_y=float(rolled.force[-1, 1]),
+                   M_z=float(rolled.moment[-1]), F_x_steady=steady.force[0], F_y_steady=steady.force[1],
+                   M_z_steady=steady.moment, F_x_linear=linear[0], F_y_linear=linear[1],
+                   mu_Fn=scene.load.mu * normal.force, stick_fraction=float(rolled.stick_cells[-1] / (normal.pressure > 0).sum()),
+                   a=a, b=b, p0=float(np.max(normal.pressure)), nx=grid.nx, ny=grid.ny, elements=grid.size, steps=n,
+                   steps_planned=n, iterations=int(rolled.products.sum()), wall_time=wall, fidelity="bem")
+    return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
+                     fields={k: np.asarray(v)[None] for k, v in fields.items()},
+                     field_steps=np.array([n - 1], dtype=np.int64), summary=summary, version=version())

@@ -67,12 +67,15 @@ class Rolling:
     """Rolling on with prescribed creepages (solver.creep; theory.md §7.3, §11.5), in Kalker's convention: body 1
     (the sphere) rolls along `direction` over body 2; xi, eta are the longitudinal and lateral rigid slip of body 1
     relative to body 2 per unit rolling distance, phi the spin (1/mm); the forces reported are those on body 1."""
-    mode: str = _spec("none", choices=("none", "steady"),
-                      doc="'steady': the steady state in contact-fixed coordinates; 'none': no [rolling]")
+    mode: str = _spec("none", choices=("none", "steady", "transient"),
+                      doc="'steady': the steady state in contact-fixed coordinates; 'transient': rolled from "
+                          "rest over `distance`, one element per step; 'none': no [rolling]")
     xi: float = _spec(0.0, -1, 1, doc="longitudinal creepage")
     eta: float = _spec(0.0, -1, 1, doc="lateral creepage")
     phi: float = _spec(0.0, -INF, INF, lo_open=True, hi_open=True, unit="1/mm", doc="spin creepage")
     direction: float = _spec(0.0, -360, 360, unit="deg", doc="rolling direction from the x axis")
+    distance: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                   doc="transient: distance rolled from rest (default: 4 contact lengths, 8 a)")
 
 
 @dataclass

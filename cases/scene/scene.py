@@ -8,7 +8,8 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
                 ramp_steps increments: unloading and reversal)
     [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW
-    [rolling]   mode ("steady"), xi, eta, phi (1/mm), direction: rolling on with creepage and spin, in
+    [rolling]   mode ("steady", "transient"), xi, eta, phi (1/mm), direction, distance (transient): rolling on
+                with creepage and spin, in
                 place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
@@ -193,6 +194,9 @@ class Scene(SceneLimits):
         if ld.levels:
             raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
                              "load.levels")
+        if self.rolling.distance is not None and self.rolling.mode != "transient":
+            raise SceneError(f"[rolling] distance = {self.rolling.distance!r} mm with mode = "
+                             f"{self.rolling.mode!r}: distance applies to mode = 'transient' only")
         if self.solver.fidelity != "bem":
             raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
                              "boundary elements; allowed value is 'bem'")
