@@ -31,7 +31,7 @@ from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, linear_creep_forces, roll_transient,
-                                      solve_steady)
+                                      solve_for_forces, solve_steady)
 from rollcontact.solver.normal import NormalParams, solve_normal
 from rollcontact.solver.tangential import TangentialParams
 
@@ -90,14 +90,14 @@ def run_creep(scene: Scene, *, progress=None) -> RunResult:
 
 
 def _solve(scene, grid, op, pair):
-    """Normal and steady tangential problems, alternated for coupled materials: (normal, steady, outer)."""
-    ro, tol = scene.rolling, scene.solver.tol
+    """Normal and steady tangential problems, alternated for coupled materials: (normal, steady, outer, creepages)."""
+    tol = scene.solver.tol
     profile = rolling_frame_profile(scene, grid)
     problem = SteadyRolling(grid, pair, coupled=op.coupled)
     nparams = NormalParams(tol=tol, max_iter=scene.solver.max_iter)
     sparams = SteadyParams(tol=tol, max_sweeps=max(scene.solver.max_iter, 100))
     normal = solve_normal(op, profile, force=scene.load.Fn, params=nparams)
-    steady = solve_steady(problem, normal.pressure, scene.load.mu, ro.xi, ro.eta, ro.phi, params=sparams)
+    steady, creep = _tangential(scene, problem, normal.pressure, None, sparams)
     outer = 1
     while op.coupled:
         extra = op.normal_from_tangential(-steady.traction[0], -steady.traction[1])  # substrate convention
@@ -105,19 +105,30 @@ def _solve(scene, grid, op, pair):
                              params=nparams)
         change = float(np.max(np.abs(again.pressure - normal.pressure)) / np.max(again.pressure))
         normal = again
-        steady = solve_steady(problem, normal.pressure, scene.load.mu, ro.xi, ro.eta, ro.phi,
-                              initial=steady.traction, params=sparams)
+        steady, creep = _tangential(scene, problem, normal.pressure, steady.traction, sparams)
         outer += 1
         if change <= max(tol, 1e-10):
             break
         if outer >= MAX_OUTER:
             raise ConvergenceError("coupled normal / steady rolling iteration did not converge",
                                    solver="creep_run", iterations=outer, residual=change, tol=max(tol, 1e-10))
-    return normal, steady, outer
+    return normal, steady, outer, creep
+
+
+def _tangential(scene, problem, pressure, initial, params):
+    """The steady state at the scene's creepages, or at the creepages that give its prescribed forces (Fx, Fy on the
+    sphere, solver.creep.solve_for_forces): (SteadyResult, (xi, eta, phi))."""
+    xi, eta, phi = scene.creepages
+    forces = scene.prescribed_forces
+    if forces is None:
+        return solve_steady(problem, pressure, scene.load.mu, xi, eta, phi, initial=initial, params=params), \
+            (xi, eta, phi)
+    found = solve_for_forces(problem, pressure, scene.load.mu, *forces, phi, params=params)
+    return found.steady, (found.xi, found.eta, phi)
 
 
 def _result(scene, grid, op, state, wall):
-    normal, steady, outer = state
+    normal, steady, outer, (xi, eta, phi) = state
     dA = grid.cell_area
     tau_sub = -steady.traction                       # the sphere's traction on the substrate (run-file meaning)
     u = op.tangential(tau_sub[0], tau_sub[1])
@@ -138,8 +149,9 @@ def _result(scene, grid, op, state, wall):
     fields = {k: np.asarray(v)[None] for k, v in fields.items()}
     ro, pair = scene.rolling, scene.material_pair
     a, b = scene.semi_axes
-    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), ro.xi, ro.eta, ro.phi)
-    summary = dict(state="steady", mode=ro.mode, xi=ro.xi, eta=ro.eta, phi=ro.phi, direction=ro.direction,
+    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), xi, eta, phi)
+    summary = dict(state="steady", mode=ro.mode, xi=xi, eta=eta, phi=phi, direction=ro.direction,
+                   forces_prescribed=scene.prescribed_forces is not None,
                    F_x=steady.force[0], F_y=steady.force[1], M_z=steady.moment,
                    F_x_linear=linear[0], F_y_linear=linear[1], mu_Fn=scene.load.mu * normal.force,
                    stick_fraction=float(steady.stick.sum() / steady.contact.sum()), a=a, b=b,
@@ -158,9 +170,10 @@ def _transient(scene, grid, op, pair, t_start):
     normal = solve_normal(op, rolling_frame_profile(scene, grid), force=scene.load.Fn,
                           params=NormalParams(tol=tol, max_iter=scene.solver.max_iter))
     problem = SteadyRolling(grid, pair, coupled=False)
-    rolled = roll_transient(op, problem, normal.pressure, scene.load.mu, ro.xi, ro.eta, ro.phi, steps=steps,
+    xi, eta, phi = scene.creepages
+    rolled = roll_transient(op, problem, normal.pressure, scene.load.mu, xi, eta, phi, steps=steps,
                             params=TangentialParams(tol=tol, max_iter=scene.solver.max_iter))
-    steady = solve_steady(problem, normal.pressure, scene.load.mu, ro.xi, ro.eta, ro.phi, initial=rolled.traction,
+    steady = solve_steady(problem, normal.pressure, scene.load.mu, xi, eta, phi, initial=rolled.traction,
                           params=SteadyParams(tol=tol, max_sweeps=max(scene.solver.max_iter, 100)))
     wall = time.perf_counter() - t_start
     dA, n = grid.cell_area, steps
@@ -179,8 +192,8 @@ def _transient(scene, grid, op, pair, t_start):
               "slip_x": np.zeros(grid.shape), "slip_y": np.zeros(grid.shape), "u_x": u[0], "u_y": u[1],
               "region": rolled.region}
     a, b = scene.semi_axes
-    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), ro.xi, ro.eta, ro.phi)
-    summary = dict(state="transient", mode=ro.mode, xi=ro.xi, eta=ro.eta, phi=ro.phi, direction=ro.direction,
+    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), xi, eta, phi)
+    summary = dict(state="transient", mode=ro.mode, xi=xi, eta=eta, phi=phi, direction=ro.direction,
                    distance=float(rolled.distance[-1]), F_x=float(rolled.force[-1, 0]), F_y=float(rolled.force[-1, 1]),
                    M_z=float(rolled.moment[-1]), F_x_steady=steady.force[0], F_y_steady=steady.force[1],
                    M_z_steady=steady.moment, F_x_linear=linear[0], F_y_linear=linear[1],

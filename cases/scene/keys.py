@@ -70,10 +70,14 @@ class Rolling:
     mode: str = _spec("none", choices=("none", "steady", "transient"),
                       doc="'steady': the steady state in contact-fixed coordinates; 'transient': rolled from "
                           "rest over `distance`, one element per step; 'none': no [rolling]")
-    xi: float = _spec(0.0, -1, 1, doc="longitudinal creepage")
-    eta: float = _spec(0.0, -1, 1, doc="lateral creepage")
+    xi: float | None = _spec(None, -1, 1, doc="longitudinal creepage (0 unless Fx, Fy are given)")
+    eta: float | None = _spec(None, -1, 1, doc="lateral creepage (0 unless Fx, Fy are given)")
     phi: float = _spec(0.0, -INF, INF, lo_open=True, hi_open=True, unit="1/mm", doc="spin creepage")
     direction: float = _spec(0.0, -360, 360, unit="deg", doc="rolling direction from the x axis")
+    Fx: float | None = _spec(None, -INF, INF, lo_open=True, hi_open=True, unit="N",
+                             doc="prescribed longitudinal force on the sphere (with Fy; xi, eta solved for)")
+    Fy: float | None = _spec(None, -INF, INF, lo_open=True, hi_open=True, unit="N",
+                             doc="prescribed lateral force on the sphere (with Fx)")
     distance: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                                    doc="transient: distance rolled from rest (default: 4 contact lengths, 8 a)")
 

@@ -8,8 +8,8 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
                 ramp_steps increments: unloading and reversal)
     [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW
-    [rolling]   mode ("steady", "transient"), xi, eta, phi (1/mm), direction, distance (transient): rolling on
-                with creepage and spin, in
+    [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction, distance
+                (transient): rolling on with creepage and spin, in
                 place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
@@ -42,7 +42,7 @@ from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
 
 #: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
-ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"))
+ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"), ("xi", "Fx"), ("eta", "Fy"))
 
 
 def other_spellings(key: str) -> set:
@@ -176,6 +176,18 @@ class Scene(SceneLimits):
         """True for a scene that rolls on with creepages ([rolling] mode other than 'none')."""
         return self.rolling.mode != "none"
 
+    @property
+    def creepages(self) -> tuple[float, float, float]:
+        """[rolling] (xi, eta, phi) with an omitted creepage as 0 (phi in 1/mm)."""
+        ro = self.rolling
+        return (ro.xi or 0.0, ro.eta or 0.0, ro.phi)
+
+    @property
+    def prescribed_forces(self) -> tuple[float, float] | None:
+        """[rolling] (Fx, Fy) in N when the forces are prescribed, else None."""
+        ro = self.rolling
+        return None if ro.Fx is None else (ro.Fx, ro.Fy)
+
     def _check_rolling(self, data: dict):
         """A [rolling] scene has no [motion], no tangential load and the BEM model."""
         if not self.rolling_on:
@@ -194,6 +206,15 @@ class Scene(SceneLimits):
         if ld.levels:
             raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
                              "load.levels")
+        ro = self.rolling
+        for creep, force in (("xi", "Fx"), ("eta", "Fy")):
+            if getattr(ro, creep) is not None and getattr(ro, force) is not None:
+                raise SceneError(f"[rolling] give either {creep} (creepage) or {force} (N), not both")
+        if (ro.Fx is None) != (ro.Fy is None):
+            raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
+                             "give both, or the creepages xi and eta")
+        if ro.Fx is not None and ro.mode != "steady":
+            raise SceneError(f"[rolling] Fx, Fy with mode = {ro.mode!r}: prescribed forces apply to mode = 'steady'")
         if self.rolling.distance is not None and self.rolling.mode != "transient":
             raise SceneError(f"[rolling] distance = {self.rolling.distance!r} mm with mode = "
                              f"{self.rolling.mode!r}: distance applies to mode = 'transient' only")

@@ -159,3 +159,18 @@ def test_transient_scene_rolls_from_rest_towards_the_steady_state(tmp_path):
     assert s["F_x"] == pytest.approx(s["F_x_steady"], rel=5e-3)
     assert s["F_y"] == pytest.approx(s["F_y_steady"], rel=5e-3)
     assert h["F_x"][-1] == pytest.approx(-s["F_x"], rel=1e-12)
+
+
+def test_prescribed_forces_give_back_the_creepages_of_a_creepage_run():
+    """[rolling] Fx, Fy (N, on the sphere) in place of xi, eta: the run finds the creepages of the run whose forces
+    they are (to the force tolerance 1e-6 mu Fn; measured 1.4e-6, 5.9e-6 relative for xi, eta and 2.7e-7 mu Fn),
+    and reports them; xi with Fx, or Fx alone, is refused."""
+    forward = run_scene(rolling_scene("xi = 2e-4\neta = -1e-4\nphi = 1e-3")).summary
+    inverse = run_scene(rolling_scene(f"Fx = {forward['F_x']!r}\nFy = {forward['F_y']!r}\nphi = 1e-3")).summary
+    assert inverse["forces_prescribed"] and not forward["forces_prescribed"]
+    assert inverse["xi"] == pytest.approx(2e-4, rel=1e-4) and inverse["eta"] == pytest.approx(-1e-4, rel=1e-4)
+    assert math.hypot(inverse["F_x"] - forward["F_x"], inverse["F_y"] - forward["F_y"]) <= 1e-6 * forward["mu_Fn"]
+    with pytest.raises(SceneError, match="either xi"):
+        rolling_scene("xi = 1e-4\nFx = -10.0\nFy = 0.0")
+    with pytest.raises(SceneError, match="together"):
+        rolling_scene("Fx = -10.0")
