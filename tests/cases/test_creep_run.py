@@ -174,3 +174,20 @@ def test_prescribed_forces_give_back_the_creepages_of_a_creepage_run():
         rolling_scene("xi = 1e-4\nFx = -10.0\nFy = 0.0")
     with pytest.raises(SceneError, match="together"):
         rolling_scene("Fx = -10.0")
+
+
+def test_a_sweep_over_a_creepage_tabulates_the_creep_forces(tmp_path):
+    """`rollcontact sweep --vary rolling.xi=...` on a [rolling] scene: summary.csv gets the creep columns (xi, eta,
+    phi, F_x, F_y, M_z, stick_fraction; units in summary.h5), with the forces of the run files."""
+    from rollcontact.cases.cli.main import main
+    from rollcontact.cases.sweep.table import read_summary
+    scene = tmp_path / "roll.toml"
+    scene.write_text(rolling_scene("eta = 1e-4").to_toml())
+    assert main(["sweep", str(scene), "--vary", "rolling.xi=1e-4,3e-4", "-o", str(tmp_path / "sw"),
+                 "--jobs", "1"]) == 0
+    rows = read_summary(tmp_path / "sw" / "summary.csv")
+    assert [r["xi"] for r in rows] == [1e-4, 3e-4]
+    for r in rows:
+        assert r["F_x"] == read_run(tmp_path / "sw" / r["file"]).summary["F_x"] < 0
+    with h5py.File(tmp_path / "sw" / "summary.h5") as h5:
+        assert h5["runs/F_x"].attrs["units"] == "N" and h5["runs/phi"].attrs["units"] == "1/mm"
