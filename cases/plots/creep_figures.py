@@ -38,6 +38,9 @@ def plot_creep_run(data, out_dir, stem, overwrite=False):
     """Maps of a steady rolling run (stem_maps.png/.pdf): the traction magnitude |tau|/(mu p_max) with the slip
     direction, and stick (at the leading edge) and slip regions; x along the rolling direction (arrow)."""
     s = data.summary
+    if not len(data.field_steps):
+        from rollcontact.cases.plots.common import PlotError
+        raise PlotError(f"{data.path}: this [rolling] run stored no fields (output.fields = 'none'): no maps to draw")
     mu = data.scene.load.mu
     x, y = np.asarray(data.x), np.asarray(data.y)
     p, tx, ty = data.field("p"), data.field("tau_x"), data.field("tau_y")

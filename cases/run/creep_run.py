@@ -7,7 +7,8 @@ coupled materials (Kalker's K != 0, [solver] coupling) the two are alternated un
 than the solver tolerance (the tangential traction's normal displacement enters the normal problem, the
 pressure's tangential displacement the slip).
 
-What is stored: one step (step 0) in /history and /fields, on the contact-fixed grid of the rolling frame.
+What is stored: one step (step 0) in /history and /fields (a transient run: one history row per step and the
+fields of its last step; output.fields = "none" stores no fields), on the contact-fixed grid of the rolling frame.
 The fields keep the meaning they have in every run file (README, "HDF5 layout"): tau_x, tau_y the traction the
 sphere exerts on the substrate, u_x, u_y the substrate's displacement relative to the sphere, slip_x, slip_y the
 slip of the substrate relative to the sphere over a rolling step of one element (dx, in mm: the steady state
@@ -146,7 +147,7 @@ def _result(scene, grid, op, state, wall):
     fields = {"p": normal.pressure, "u_z": normal.displacement, "tau_x": tau_sub[0], "tau_y": tau_sub[1],
               "slip_x": -steady.slip[0] * grid.dx, "slip_y": -steady.slip[1] * grid.dx, "u_x": u[0], "u_y": u[1],
               "region": region}
-    fields = {k: np.asarray(v)[None] for k, v in fields.items()}
+    fields, stored = _stored(scene, fields, 0)
     ro, pair = scene.rolling, scene.material_pair
     a, b = scene.semi_axes
     linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), xi, eta, phi)
@@ -158,7 +159,15 @@ def _result(scene, grid, op, state, wall):
                    p0=float(np.max(normal.pressure)), nx=grid.nx, ny=grid.ny, elements=grid.size, steps=1,
                    steps_planned=1, iterations=int(history["iterations"][0]), wall_time=wall, fidelity="bem")
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
-                     fields=fields, field_steps=np.zeros(1, dtype=np.int64), summary=summary, version=version())
+                     fields=fields, field_steps=stored, summary=summary, version=version())
+
+
+def _stored(scene, fields, step):
+    """The snapshot of `step` as stored fields, or none with output.fields = 'none' (any other choice stores the
+    one snapshot a [rolling] run keeps: its state, or the last step of a transient run)."""
+    if scene.output.fields == "none":
+        return {}, np.zeros(0, dtype=np.int64)
+    return {k: np.asarray(v)[None] for k, v in fields.items()}, np.array([step], dtype=np.int64)
 
 
 def _transient(scene, grid, op, pair, t_start):
@@ -200,6 +209,6 @@ def _transient(scene, grid, op, pair, t_start):
                    mu_Fn=scene.load.mu * normal.force, stick_fraction=float(rolled.stick_cells[-1] / (normal.pressure > 0).sum()),
                    a=a, b=b, p0=float(np.max(normal.pressure)), nx=grid.nx, ny=grid.ny, elements=grid.size, steps=n,
                    steps_planned=n, iterations=int(rolled.products.sum()), wall_time=wall, fidelity="bem")
+    fields, stored = _stored(scene, fields, n - 1)
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
-                     fields={k: np.asarray(v)[None] for k, v in fields.items()},
-                     field_steps=np.array([n - 1], dtype=np.int64), summary=summary, version=version())
+                     fields=fields, field_steps=stored, summary=summary, version=version())
