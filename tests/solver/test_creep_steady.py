@@ -209,3 +209,21 @@ def test_linear_limit_error_falls_with_refinement_to_1_percent_at_81_elements(ra
     for k in (0, 1):
         assert abs(errors[81][k]) < abs(errors[41][k])
     assert max(abs(e) for e in errors[81]) < 0.01
+
+
+def test_displacements_match_the_fft_operator_of_the_bem_layer():
+    """SteadyRolling's products against bem.HalfSpaceOperator on the same grid (to 1e-12 of the largest value):
+    u1 - u2 from a traction on body 1 is op.tangential of it, and from the pressure it is minus the operator's
+    substrate-convention coupling displacement (Kalker's K of a steel / aluminium pair, beta = 0.07)."""
+    from rollcontact.bem import HalfSpaceOperator
+    grid = ellipse_grid(1.0, 0.7, 15)
+    mats = MaterialPair.from_moduli(210e3, 0.28, 70e3, 0.33)
+    problem = SteadyRolling(grid, mats)
+    op = HalfSpaceOperator(grid, mats, coupling=True)
+    rng = np.random.default_rng(3)
+    tau = rng.standard_normal((2,) + grid.shape)
+    want = op.tangential(tau[0], tau[1])
+    assert np.abs(problem.displacement(tau) - want).max() < 1e-12 * np.abs(want).max()
+    pressure = hertz_pressure(grid, 1.0, 0.7, 100.0)
+    want = -op.tangential_from_pressure(pressure)
+    assert np.abs(problem.pressure_displacement(pressure) - want).max() < 1e-12 * np.abs(want).max()
