@@ -3,9 +3,10 @@
 The scene's profile is turned into the rolling frame (x along [rolling] direction, y to its left), the normal
 problem is solved on a contact-fixed grid over the Hertz contact plus the scene's margin (NormCG), and the steady
 tangential problem on the same grid (Kalker's Gauss-Seidel in traction differences, solver.creep.steady). For
-coupled materials (Kalker's K != 0, [solver] coupling) the two are alternated until the pressure changes by less
-than the solver tolerance (the tangential traction's normal displacement enters the normal problem, the
-pressure's tangential displacement the slip).
+coupled materials (Kalker's K != 0, [solver] coupling) the two are alternated until neither the pressure
+(relative to its maximum) nor the traction (relative to mu p_max) changes by more than the solver tolerance (the
+tangential traction's normal displacement enters the normal problem, the pressure's tangential displacement the
+slip).
 
 What is stored: one step (step 0) in /history and /fields (a transient run: one history row per step and the
 fields of its last step; output.fields = "none" stores no fields), on the contact-fixed grid of the rolling frame.
@@ -105,9 +106,11 @@ def _solve(scene, grid, op, pair):
         again = solve_normal(op, profile, force=scene.load.Fn, initial=normal.pressure, extra_displacement=extra,
                              params=nparams)
         change = float(np.max(np.abs(again.pressure - normal.pressure)) / np.max(again.pressure))
-        normal = again
+        normal, before = again, steady.traction
         steady, creep = _tangential(scene, problem, normal.pressure, steady.traction, sparams)
         outer += 1
+        moved = float(np.max(np.abs(steady.traction - before)) / (scene.load.mu * np.max(normal.pressure)))
+        change = max(change, moved)          # neither the pressure nor the traction moves any more
         if change <= max(tol, 1e-10):
             break
         if outer >= MAX_OUTER:
