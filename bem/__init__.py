@@ -6,6 +6,7 @@
     influence   Boussinesq-Cerruti influence coefficients of a rectangular element (theory.md §2)
     operator    the influence coefficients applied by zero-padded FFT convolution (theory.md §3)
     subsurface  stresses below the grid from its tractions, depth layer by depth layer (theory.md §11.6)
+    rows        the tangential influence of one grid row's change on the other rows, by 1-D FFTs
     wisdom      FFTW wisdom cached on disk (and the pyfftw import the operator uses)
 
 Imports nothing else of rollcontact. Units: mm, N, MPa (influence coefficients in mm/MPa). The names below are

@@ -27,6 +27,17 @@ def _report(paths, notes) -> int:
     return 0
 
 
+def _creep_run(target: Path):
+    """The result of a [rolling] run file (its maps are drawn by cases.plots.creep_figures), else None."""
+    from rollcontact.cases.plots.common import PlotError
+    from rollcontact.cases.plots.creep_figures import is_creep_run
+    from rollcontact.cases.results.hdf5 import read_run_file
+    if not target.is_file():
+        return None
+    data = read_run_file(target, PlotError, str(target))
+    return data if is_creep_run(data) else None
+
+
 def plot_handler(args) -> int:
     """`rollcontact plot TARGET`: one run file or a sweep folder."""
     from rollcontact.cases.plots.common import PlotError, open_run
@@ -40,6 +51,9 @@ def plot_handler(args) -> int:
             if args.step is not None:
                 raise PlotError("--step applies to a run file, not to a sweep folder")
             paths = plot_folder(target, out_dir, notes, overwrite=args.overwrite)
+        elif _creep_run(target) is not None:
+            from rollcontact.cases.plots.creep_figures import plot_creep_run
+            paths = plot_creep_run(_creep_run(target), out_dir, target.stem, overwrite=args.overwrite)
         else:
             paths = plot_run(open_run(target), out_dir, args.step, notes, overwrite=args.overwrite)
     except PlotError as exc:

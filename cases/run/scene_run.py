@@ -23,7 +23,7 @@ import signal
 import sys
 import threading
 
-from rollcontact.bem.errors import OutputExistsError
+from rollcontact.bem.errors import InputError, OutputExistsError
 from rollcontact.bem.wisdom import process_exists
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary, wait_for_replaced, write_run
 from rollcontact.cases.results.lock import OutputLock
@@ -31,6 +31,7 @@ from rollcontact.cases.results.outputs import free_name
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.run.bem_run import run_bem
 from rollcontact.cases.run.checkpoint import Checkpoints
+from rollcontact.cases.run.creep_run import run_creep
 from rollcontact.cases.run.mdr_run import run_mdr
 from rollcontact.cases.scene.scene import Scene
 
@@ -58,7 +59,7 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
             locks.append(OutputLock(target, label=f"{label} (its partial file {target.name})").acquire())
         for path in (out, target):
             remove_stale_temporaries(path)
-        checkpoints = Checkpoints(target, attrs) if scene.solver.fidelity == "bem" else None
+        checkpoints = Checkpoints(target, attrs) if scene.solver.fidelity == "bem" and not scene.rolling_on else None
         try:
             result = _run_model(scene, progress, restart, checkpoints)
         except RunInterrupted as exc:
@@ -75,6 +76,10 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
 
 
 def _run_model(scene, progress, restart, checkpoints) -> RunResult:
+    if scene.rolling_on:
+        if restart is not None:
+            raise InputError("--restart: a [rolling] scene is solved in one step; there is nothing to restart")
+        return run_creep(scene, progress=progress)
     if scene.solver.fidelity == "mdr":
         return run_mdr(scene, progress=progress)
     return run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints)

@@ -64,6 +64,8 @@ def format_summary(result: RunResult) -> str:
     """Short human summary printed by `rollcontact run`."""
     d = result
     s, h = d.summary, d.history
+    if s.get("state") in ("steady", "transient", "failed") and "xi" in s:
+        return _format_creep(d)
     lines = []
     if len(h.get("step", [])):
         a_eq = math.sqrt(h["contact_area"][-1] / math.pi)
@@ -102,6 +104,31 @@ def format_summary(result: RunResult) -> str:
                 else "")
         lines.append(f"sideways (across Ft): U_perp = {s['U_perp']:.6f} mm{walk}")
     if d.status != "complete":
+        lines.append(f"status: {d.status}: {d.error}")
+    if d.path is not None:
+        lines.append(f"results written to {Path(d.path).resolve()}")
+    return "\n".join(lines)
+
+
+def _format_creep(d: RunResult) -> str:
+    """Short summary of a [rolling] run (cases.run.creep_run): Kalker's convention, forces on the rolling sphere."""
+    s, h = d.summary, d.history
+    lines = [f"{s.get('mode', 'steady')} rolling, creepages xi = {s['xi']:.6g}, eta = {s['eta']:.6g}, phi = {s['phi']:.6g} 1/mm "
+             f"(direction {s['direction']:.4g} deg)"]
+    if d.status == "complete":
+        lines.append(f"contact area {h['contact_area'][-1]:.5g} mm^2 (stick {100 * s['stick_fraction']:.1f} %), "
+                     f"max pressure {s['p0']:.5g} MPa, approach {h['approach'][-1]:.6g} mm, grid {s['nx']} x "
+                     f"{s['ny']}, {int(h['tangential_iterations'][-1])} "
+                     f"{'sweeps' if s.get('mode') == 'steady' else 'products in the last step'}, wall time "
+                     f"{d.wall_time:.2f} s")
+        lines.append(f"forces on the rolling sphere (Kalker's convention, opposing the creepages): F_x = "
+                     f"{s['F_x']:.6g} N, F_y = {s['F_y']:.6g} N, M_z = {s['M_z']:.6g} N mm; |F|/(mu Fn) = "
+                     f"{math.hypot(s['F_x'], s['F_y']) / s['mu_Fn']:.4f}; linear theory F_x = {s['F_x_linear']:.6g} N, "
+                     f"F_y = {s['F_y_linear']:.6g} N")
+        if s.get("mode") == "transient":
+            lines.append(f"after rolling {s['distance']:.6g} mm in {s['steps']} steps; the steady state: F_x = "
+                         f"{s['F_x_steady']:.6g} N, F_y = {s['F_y_steady']:.6g} N, M_z = {s['M_z_steady']:.6g} N mm")
+    else:
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:
         lines.append(f"results written to {Path(d.path).resolve()}")

@@ -80,6 +80,26 @@ class Motion:
 
 
 @dataclass
+class Rolling:
+    """Rolling on with prescribed creepages (solver.creep; theory.md §7.3, §11.5), in Kalker's convention: body 1
+    (the sphere) rolls along `direction` over body 2; xi, eta are the longitudinal and lateral rigid slip of body 1
+    relative to body 2 per unit rolling distance, phi the spin (1/mm); the forces reported are those on body 1."""
+    mode: str = _spec("none", choices=("none", "steady", "transient"),
+                      doc="'steady': the steady state in contact-fixed coordinates; 'transient': rolled from "
+                          "rest over `distance`, one element per step; 'none': no [rolling]")
+    xi: float | None = _spec(None, -1, 1, doc="longitudinal creepage (0 unless Fx, Fy are given)")
+    eta: float | None = _spec(None, -1, 1, doc="lateral creepage (0 unless Fx, Fy are given)")
+    phi: float = _spec(0.0, -INF, INF, lo_open=True, hi_open=True, unit="1/mm", doc="spin creepage")
+    direction: float = _spec(0.0, -360, 360, unit="deg", doc="rolling direction from the x axis")
+    Fx: float | None = _spec(None, -INF, INF, lo_open=True, hi_open=True, unit="N",
+                             doc="prescribed longitudinal force on the sphere (with Fy; xi, eta solved for)")
+    Fy: float | None = _spec(None, -INF, INF, lo_open=True, hi_open=True, unit="N",
+                             doc="prescribed lateral force on the sphere (with Fx)")
+    distance: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                   doc="transient: distance rolled from rest (default: 4 contact lengths, 8 a)")
+
+
+@dataclass
 class GridSpec:
     dx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                              doc="element size in x (default: the smaller Hertz semi-axis / 12, 2 digits)")
@@ -104,10 +124,10 @@ class Output:
                         doc="steps whose fields are stored")
 
 
-SECTIONS = {"materials": Materials, "geometry": Geometry, "load": Load, "motion": Motion,
+SECTIONS = {"materials": Materials, "geometry": Geometry, "load": Load, "motion": Motion, "rolling": Rolling,
             "grid": GridSpec, "solver": SolverSpec, "output": Output}
 SECTION_ATTR = {"materials": "materials", "geometry": "geometry", "load": "load", "motion": "motion",
-         "grid": "grid", "solver": "solver", "output": "output"}
+                "rolling": "rolling", "grid": "grid", "solver": "solver", "output": "output"}
 
 
 def check_key(sec, f, value):

@@ -9,6 +9,9 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
                 ramp_steps increments: unloading and reversal)
     [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW
+    [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction, distance
+                (transient): rolling on with creepage and spin, in
+                place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
@@ -36,13 +39,13 @@ from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.geometry import (
     SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
-    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, SolverSpec, SECTION_ATTR, check_key)
+    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
 
 #: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
-ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"))
+ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"), ("xi", "Fx"), ("eta", "Fy"))
 
 
 def other_spellings(key: str) -> set:
@@ -60,6 +63,7 @@ class Scene(SceneLimits):
     geometry: Geometry = field(default_factory=Geometry)
     load: Load = field(default_factory=Load)
     motion: Motion = field(default_factory=Motion)
+    rolling: Rolling = field(default_factory=Rolling)
     grid: GridSpec = field(default_factory=GridSpec)
     solver: SolverSpec = field(default_factory=SolverSpec)
     output: Output = field(default_factory=Output)
@@ -90,6 +94,7 @@ class Scene(SceneLimits):
             kwargs = {k: check_key(sec, names[k], v) for k, v in values.items()}
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
+        scene._check_rolling(data)
         scene._check_consistency()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
@@ -124,8 +129,11 @@ class Scene(SceneLimits):
         return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
+        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]."""
         out = {}
         for sec in SECTIONS:
+            if sec == ("motion" if self.rolling_on else "rolling"):
+                continue
             obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
@@ -156,7 +164,7 @@ class Scene(SceneLimits):
         data = self.to_dict()
         for key in self.derived:  # re-derived from the overridden scene unless set explicitly
             sec, name = key.split(".")
-            data[sec].pop(name, None)
+            data.get(sec, {}).pop(name, None)    # [motion] is left out of a rolling scene's dict
         given = {}  # section.key -> the --set item that gave it
         for item in assignments:
             if "=" not in item or "." not in item.split("=", 1)[0]:
@@ -180,6 +188,57 @@ class Scene(SceneLimits):
                 if name != "shape" and name not in keep and f"geometry.{name}" not in given:
                     del data["geometry"][name]
         return Scene.from_dict(data, name=self.name)
+
+    @property
+    def rolling_on(self) -> bool:
+        """True for a scene that rolls on with creepages ([rolling] mode other than 'none')."""
+        return self.rolling.mode != "none"
+
+    @property
+    def creepages(self) -> tuple[float, float, float]:
+        """[rolling] (xi, eta, phi) with an omitted creepage as 0 (phi in 1/mm)."""
+        ro = self.rolling
+        return (ro.xi or 0.0, ro.eta or 0.0, ro.phi)
+
+    @property
+    def prescribed_forces(self) -> tuple[float, float] | None:
+        """[rolling] (Fx, Fy) in N when the forces are prescribed, else None."""
+        ro = self.rolling
+        return None if ro.Fx is None else (ro.Fx, ro.Fy)
+
+    def _check_rolling(self, data: dict):
+        """A [rolling] scene has no [motion], no tangential load and the BEM model."""
+        if not self.rolling_on:
+            if set(data.get("rolling", {})) - {"mode"}:
+                raise SceneError("[rolling] mode = 'none' with other [rolling] keys: set mode = 'steady' to roll "
+                                 "with creepages, or leave the [rolling] section out")
+            return
+        if "motion" in data:
+            raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
+                             "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
+        ld = self.load
+        for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
+            if value is not None:
+                raise SceneError(f"[load] {key} = {value!r} with [rolling]: the tangential force of a rolling "
+                                 "scene follows from its creepages [rolling] xi, eta, phi; remove load." + key)
+        if ld.levels:
+            raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
+                             "load.levels")
+        ro = self.rolling
+        for creep, force in (("xi", "Fx"), ("eta", "Fy")):
+            if getattr(ro, creep) is not None and getattr(ro, force) is not None:
+                raise SceneError(f"[rolling] give either {creep} (creepage) or {force} (N), not both")
+        if (ro.Fx is None) != (ro.Fy is None):
+            raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
+                             "give both, or the creepages xi and eta")
+        if ro.Fx is not None and ro.mode != "steady":
+            raise SceneError(f"[rolling] Fx, Fy with mode = {ro.mode!r}: prescribed forces apply to mode = 'steady'")
+        if self.rolling.distance is not None and self.rolling.mode != "transient":
+            raise SceneError(f"[rolling] distance = {self.rolling.distance!r} mm with mode = "
+                             f"{self.rolling.mode!r}: distance applies to mode = 'transient' only")
+        if self.solver.fidelity != "bem":
+            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
+                             "boundary elements; allowed value is 'bem'")
 
     def _check_consistency(self):
         ld, mo = self.load, self.motion

@@ -26,10 +26,15 @@ dU_perp_per_period: the final shift across Ft and its change over the last perio
 periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself; file: run file name
 (relative to OUTDIR); error: message of a failed run."""
 
+#: Further columns of a sweep over a [rolling] scene (cases.run.creep_run), added only when its runs have them:
+#: the creepages xi, eta (dimensionless) and phi (1/mm), the forces F_x, F_y (N) and moment M_z (N mm) on the
+#: sphere in Kalker's convention, and the stick fraction of the contact.
+CREEP_COLUMNS = ("xi", "eta", "phi", "F_x", "F_y", "M_z", "stick_fraction")
+
 #: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
 COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "U_perp": "mm", "dU_perp_per_period": "mm",
-                "wall_time": "s"}
+                "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm"}
 _FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "U_perp", "dU_perp_per_period",
                   "u_stat", "wall_time")
 _INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations")
@@ -45,6 +50,8 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     rows = sorted(rows, key=lambda r: r.get("index", 0))
+    if columns is SUMMARY_COLUMNS and any(r.get("F_x") is not None for r in rows):
+        columns = SUMMARY_COLUMNS + CREEP_COLUMNS      # a sweep over a [rolling] scene
     header = list(keys) + [c for c in columns if c not in keys]
     tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
     try:

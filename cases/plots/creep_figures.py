@@ -1,0 +1,72 @@
+"""The creep-force curve figure (`rollcontact creep-curve`): |F|/(mu Fn) against the creepage over its saturation
+value, with Kalker's linear theory and Vermeulen-Johnson's saturation model (cases.run.creep_curve)."""
+from __future__ import annotations
+
+import numpy as np
+
+from rollcontact.cases.plots.common import plt, save_figure
+from rollcontact.solver.creep import vermeulen_johnson
+
+LABELS = {"xi": ("longitudinal creepage", "F_x"), "eta": ("lateral creepage", "F_y"), "phi": ("spin", "F_y")}
+
+
+def plot_curve(table, out_dir, stem, overwrite=False):
+    """Write stem.png and stem.pdf into out_dir; returns their paths."""
+    name, force = LABELS[table.varied]
+    s = np.array([r["creepage_over_saturation"] for r in table.rows])
+    f = np.array([r["F_over_muFn"] for r in table.rows])
+    fine = np.linspace(0.0, s.max(), 200)
+    fig, ax = plt.subplots(figsize=(6.0, 4.0), layout="constrained")
+    ax.plot(s, f, "o-", color="C0", label="rollcontact, steady")
+    ax.plot(fine[fine <= 1.2], fine[fine <= 1.2], "--", color="C1", label="Kalker's linear theory")
+    ax.plot(fine, vermeulen_johnson(fine), ":", color="C2", label="Vermeulen-Johnson")
+    ax.axhline(1.0, color="0.6", lw=0.8)
+    unit = " (1/mm)" if table.varied == "phi" else ""
+    ax.set_xlabel(f"{name} / saturation value ({table.saturation:.4g}{unit})")
+    ax.set_ylabel(f"-{force} / (mu Fn)")
+    ax.set_title(f"creep-force curve over {table.varied}; mu Fn = {table.mu_fn:.4g} N", fontsize=10)
+    ax.legend(loc="lower right")
+    return save_figure(fig, out_dir, stem, overwrite=overwrite)
+
+
+def is_creep_run(data) -> bool:
+    """True for the result of a [rolling] scene (summary state 'steady', cases.run.creep_run)."""
+    return data.summary.get("state") in ("steady", "transient") and "xi" in data.summary
+
+
+def plot_creep_run(data, out_dir, stem, overwrite=False):
+    """Maps of a steady rolling run (stem_maps.png/.pdf): the traction magnitude |tau|/(mu p_max) with the slip
+    direction, and stick (at the leading edge) and slip regions; x along the rolling direction (arrow)."""
+    s = data.summary
+    if not len(data.field_steps):
+        from rollcontact.cases.plots.common import PlotError
+        raise PlotError(f"{data.path}: this [rolling] run stored no fields (output.fields = 'none'): no maps to draw")
+    mu = data.scene.load.mu
+    x, y = np.asarray(data.x), np.asarray(data.y)
+    p, tx, ty = data.field("p"), data.field("tau_x"), data.field("tau_y")
+    region = data.field("region")
+    scale = mu * float(np.max(p))
+    extent = (x[0] - 0.5 * (x[1] - x[0]), x[-1] + 0.5 * (x[1] - x[0]), y[0] - 0.5 * (y[1] - y[0]),
+              y[-1] + 0.5 * (y[1] - y[0]))
+    fig, axes = plt.subplots(1, 2, figsize=(10.0, 4.2), layout="constrained")
+    mag = np.where(p > 0, np.hypot(tx, ty) / scale, np.nan)
+    im = axes[0].imshow(mag, origin="lower", extent=extent, cmap="viridis", vmin=0, vmax=1)
+    fig.colorbar(im, ax=axes[0], label="|tau| / (mu p_max)")
+    step = max(1, len(x) // 20)
+    X, Y = np.meshgrid(x, y)
+    sl = (slice(None, None, step), slice(None, None, step))
+    inside = (p > 0)[sl]
+    axes[0].quiver(X[sl][inside], Y[sl][inside], tx[sl][inside], ty[sl][inside], color="w", width=0.003)
+    axes[0].set_title("traction of the sphere on the substrate", fontsize=10)
+    codes = np.where(region == 0, np.nan, region.astype(float))
+    axes[1].imshow(codes, origin="lower", extent=extent, cmap=plt.get_cmap("coolwarm", 2), vmin=0.5, vmax=2.5)
+    axes[1].set_title(f"stick (blue, {100 * s['stick_fraction']:.0f} %) and slip (red)", fontsize=10)
+    for ax in axes:
+        ax.set_xlabel("x (mm, rolling direction)")
+        ax.set_ylabel("y (mm)")
+        ax.set_aspect("equal")
+        ax.annotate("", xy=(extent[1], extent[3]), xytext=(extent[1] - 0.2 * (extent[1] - extent[0]), extent[3]),
+                    arrowprops=dict(arrowstyle="->", color="k"), annotation_clip=False)
+    fig.suptitle(f"{s['mode']} rolling: xi = {s['xi']:.4g}, eta = {s['eta']:.4g}, phi = {s['phi']:.4g} 1/mm; "
+                 f"F_x = {s['F_x']:.4g} N, F_y = {s['F_y']:.4g} N (on the sphere)", fontsize=10)
+    return save_figure(fig, out_dir, f"{stem}_maps", overwrite=overwrite)

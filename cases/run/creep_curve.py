@@ -1,0 +1,94 @@
+"""Creep-force curves of a [rolling] scene (`rollcontact creep-curve`; theory.md §7.3, §11.5), as CSV.
+
+One creepage of the scene (xi, eta or phi) is varied from the linear range to full sliding, the other two held at
+zero, on the scene's contact-fixed grid and pressure (solved once: the normal problem does not depend on the
+traction for uncoupled materials; coupled ones are refused), each steady solution the warm start of the next
+(solver.creep.creep_curve). The creepages are `fractions` of the saturation creepage, at which Kalker's linear
+force with Hertz's semi-axes would reach mu Fn: xi* = mu Fn/(G c^2 C11), eta* = mu Fn/(G c^2 C22),
+phi* = mu Fn/(G c^3 C23) (1/mm). Kalker's convention: forces on the rolling sphere, opposing the creepage.
+Units: mm, N, MPa; creepages dimensionless, phi in 1/mm.
+"""
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+
+from rollcontact.bem.errors import InputError, OutputExistsError
+from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.creep_run import creep_grid, rolling_frame_profile
+from rollcontact.cases.scene.scene import Scene
+from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, kalker_coefficients,
+                                      saturation_creepage, vermeulen_johnson)
+from rollcontact.solver.normal import NormalParams, solve_normal
+
+#: The creepage varied -> (index in (xi, eta, phi), force component, Kalker coefficient index)
+VARIED = {"xi": (0, 0, 0), "eta": (1, 1, 1), "phi": (2, 1, 2)}
+COLUMNS = ("creepage", "creepage_over_saturation", "F_x", "F_y", "M_z", "F_over_muFn", "linear_over_muFn",
+           "vermeulen_johnson", "stick_fraction", "sweeps")
+
+
+@dataclass
+class CurveTable:
+    """The curve: `rows` (one dict per creepage, keys COLUMNS), what was varied, the saturation creepage."""
+    varied: str
+    saturation: float
+    rows: list
+    mu_fn: float
+
+
+def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTable:
+    """Steady states of `scene` at creepages `fractions` x the saturation creepage of `varied` (default: 20 values
+    geometrically from 0.02 to 4). F_over_muFn is -F/(mu Fn) of the component the creepage drives (positive)."""
+    if varied not in VARIED:
+        raise InputError(f"creep-curve --of {varied!r}: allowed values are {list(VARIED)}")
+    fractions = np.geomspace(0.02, 4.0, 20) if fractions is None else np.asarray(fractions, dtype=float)
+    grid, pair = creep_grid(scene), scene.material_pair
+    op = HalfSpaceOperator(grid, pair, coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+    if op.coupled:
+        raise InputError(f"creep-curve: coupled materials (Dundurs beta = {pair.beta:.3g}) need the normal problem "
+                         "at every creepage; run the scene per creepage (rollcontact run), or set "
+                         "solver.coupling = \"off\"")
+    normal = solve_normal(op, rolling_frame_profile(scene, grid), force=scene.load.Fn,
+                          params=NormalParams(tol=scene.solver.tol, max_iter=scene.solver.max_iter))
+    a, b = scene.semi_axes
+    nu = min(max(pair.nu, 0.0), 0.5)
+    index, component, which = VARIED[varied]
+    coefficient = kalker_coefficients(a / b, nu)[which]
+    c = math.sqrt(a * b)
+    mu_fn = scene.load.mu * normal.force
+    saturation = saturation_creepage(pair.G, c, coefficient * (c if varied == "phi" else 1.0), scene.load.mu,
+                                     normal.force)
+    creep = np.zeros((len(fractions), 3))
+    creep[:, index] = fractions * saturation
+    curve = creep_curve(SteadyRolling(grid, pair, coupled=False), normal.pressure, scene.load.mu, creep,
+                        params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)))
+    ratio = -curve.force[:, component] / mu_fn
+    rows = [dict(zip(COLUMNS, (creep[k, index], fractions[k], curve.force[k, 0], curve.force[k, 1],
+                               curve.moment[k], ratio[k], fractions[k], float(vermeulen_johnson(fractions[k])),
+                               curve.stick_fraction[k], int(curve.sweeps[k])))) for k in range(len(fractions))]
+    return CurveTable(varied, saturation, rows, mu_fn)
+
+
+def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
+    """The curve as CSV (header: COLUMNS; a comment line first with the units and the saturation creepage),
+    through a temporary file renamed into place; an existing file only with `overwrite`."""
+    path = Path(path)
+    if path.exists() and not overwrite:
+        raise OutputExistsError(f"{path}: exists; rollcontact does not replace a file unless asked: add --overwrite")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    unit = "1/mm" if table.varied == "phi" else "-"
+    with open(tmp, "w", newline="") as fh:
+        fh.write(f"# creep-force curve over {table.varied} ({unit}); saturation creepage {table.saturation:.6g} "
+                 f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
+        writer = csv.DictWriter(fh, fieldnames=COLUMNS)
+        writer.writeheader()
+        for row in table.rows:
+            writer.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+    os.replace(tmp, path)
+    return path
