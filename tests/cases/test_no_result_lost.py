@@ -209,8 +209,9 @@ def test_a_sweep_on_dask_reports_a_worker_that_dies_and_finishes_every_run(tmp_p
         proc = subprocess.Popen([ROLLCONTACT, "sweep", "-o", "sweep", "--scheduler", address, "--vary",
                                  "load.ft=0.2,0.3,0.4,0.5,0.6,0.7", *COARSE, "--set", "motion.periods=12"],
                                 cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        deadline = time.monotonic() + 120
-        while time.monotonic() < deadline and not list(out.glob("*.h5.lock")):
+        deadline = time.monotonic() + 120     # both workers busy: two run files locked (the table's lock,
+        while time.monotonic() < deadline and len(   # summary.h5.lock, comes before any run starts)
+                [p for p in out.glob("*.h5.lock") if p.name != "summary.h5.lock"]) < 2:
             time.sleep(0.05)
         workers[0].send_signal(signal.SIGKILL)
         stdout, stderr = proc.communicate(timeout=300)
