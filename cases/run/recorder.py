@@ -27,7 +27,8 @@ class StepRecorder:
         if restart is not None:
             n = restart.step + 1
             for k in HISTORY_NAMES:
-                self.history[k] = list(np.asarray(restart.data.history[k])[:n])
+                stored = restart.data.history.get(k)   # dissipation: NaN in files written before it existed
+                self.history[k] = list(np.asarray(stored)[:n]) if stored is not None else [np.nan] * n
             steps, fields = restart.snapshots()
             self.stored = [int(s) for s in steps]
             self.fields = {k: list(fields[k]) for k in FIELD_NAMES}
@@ -48,7 +49,7 @@ class StepRecorder:
                    F_x=tr.force[0], F_y=tr.force[1], iterations=nr.iterations + tr.iterations,
                    normal_iterations=nr.iterations, tangential_iterations=tr.iterations,
                    outer_iterations=rec.outer_iterations, residual=max(nr.residual, tr.residual),
-                   wall_time=rec.wall_time)
+                   wall_time=rec.wall_time, dissipation=rec.dissipation)
         for k, v in row.items():
             self.history[k].append(v)
         if rec.step in self.snapshot_steps:

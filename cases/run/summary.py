@@ -33,6 +33,7 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     n_ramp = scene.load.ramp_steps if scene.Ft > 0 else 0
     if n_done > n_ramp:
         summary.update(U_stat=float(U[n_ramp]), u_stat=float(U[n_ramp] / U0))
+    summary["dissipation_per_period"] = dissipation_per_period(path.period, history)
     if state_label:
         summary["state"] = state_label
     elif path.period.max() == 0:
@@ -48,6 +49,18 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
         else:
             summary["state"] = "incomplete"
     return summary
+
+
+def dissipation_per_period(period, history: dict) -> float | None:
+    """Frictional work of the last complete period (N mm): /history/dissipation summed over its steps; None when
+    no period is complete. period: the period index of every planned step (LoadPath.period)."""
+    period = np.asarray(period)
+    n_done = len(history["step"])
+    complete = [k for k in range(1, int(period.max()) + 1) if np.flatnonzero(period == k)[-1] < n_done]
+    if not complete:
+        return None
+    steps = np.flatnonzero(period == complete[-1])
+    return float(np.sum(np.asarray(history["dissipation"])[steps]))
 
 
 def format_summary(result: RunResult) -> str:
@@ -82,6 +95,8 @@ def format_summary(result: RunResult) -> str:
     elif state in ("ratcheting", "undecided"):
         line += f"; dU per period = {s['dU_per_period']:.3e} mm, du = {s['du']:.3e} (w = {s['w']:.4g})"
     lines.append(line)
+    if s.get("dissipation_per_period") is not None and d.scene.oscillating:
+        lines.append(f"frictional work of the last period: {s['dissipation_per_period']:.6g} N mm")
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:

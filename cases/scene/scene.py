@@ -178,6 +178,35 @@ class Scene(SceneLimits):
                              "no static state exists (allowed range 0 <= Ft <= mu*Fn)")
         if mo.w is not None and mo.W is not None:
             raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
+        self._check_oscillation()
+
+    @property
+    def oscillating(self) -> bool:
+        """True when a load oscillates within each period (load.ft_amplitude or load.fn_amplitude > 0)."""
+        return self.load.ft_amplitude > 0 or self.load.fn_amplitude > 0
+
+    def _check_oscillation(self):
+        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
+
+        The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
+        checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi
+        in [-1, 1] is monotone in s on either side of its zero, so its maximum is at s = +1 or s = -1, and
+        |Ft| < mu Fn holds at every phase iff A < 1 + B - ft and A < 1 - B + ft.
+        """
+        ld = self.load
+        if not self.oscillating:
+            return
+        if ld.levels:
+            raise SceneError(f"[load] levels = {ld.levels!r} cannot be combined with oscillating loads "
+                             "(ft_amplitude, fn_amplitude): give one or the other")
+        A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
+        use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
+        if use >= 1.0:
+            raise SceneError(
+                f"[load] ft_amplitude = {A!r} with ft = {ft:.6g}, fn_amplitude = {B!r}: |Ft| reaches {use:.4g} "
+                f"mu Fn during the cycle (gross sliding); allowed range is ft_amplitude < "
+                f"{max(0.0, min(1.0 + B - ft, 1.0 - B + ft)):.6g} at this ft and fn_amplitude (|Ft| < mu Fn "
+                "at every phase)")
 
     # --- derived quantities ----------------------------------------------------------------------
     @property
