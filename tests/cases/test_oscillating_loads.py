@@ -114,3 +114,16 @@ def test_the_3d_history_equals_the_mdr_model_with_per_spring_memory(name, load, 
     U3, U1 = bem.history["U_x"], mdr.history["U_x"]
     assert U3.shape == U1.shape
     assert np.max(np.abs(U3 - U1)) <= 0.01 * np.max(np.abs(U1))
+
+
+def test_plot_of_an_oscillating_run_draws_the_hysteresis_loop_and_the_work_per_period(tmp_path, capsys):
+    import matplotlib.image as mpimg
+    from rollcontact.cases.cli.main import main as run_cli
+
+    sc = scene({"ft_amplitude": 0.6}, {"steps_per_period": 16}, output={"fields": "none"})      # no maps: the loads figure is what is tested
+    rollcontact.run(sc, tmp_path / "md.h5")
+    assert run_cli(["plot", str(tmp_path / "md.h5"), "-o", str(tmp_path / "plots")]) == 0
+    png = tmp_path / "plots" / "md_loads.png"
+    assert str(png) in capsys.readouterr().out and (tmp_path / "plots" / "md_loads.pdf").stat().st_size > 0
+    image = mpimg.imread(png)
+    assert image.shape[0] > 300 and image.shape[1] > 600 and image[..., :3].std() > 0.05   # drawn, not blank
