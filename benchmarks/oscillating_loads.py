@@ -2,6 +2,7 @@
 without rolling, and its accuracy against the closed forms (theory.md §11.2).
 
     .venv/bin/python benchmarks/oscillating_loads.py [--repeats 5] [--periods 4] [--out benchmarks/results/oscillating_loads.json]
+    .venv/bin/python benchmarks/oscillating_loads.py --accuracy [--out benchmarks/results/oscillating_loads_accuracy.json]
 
 The paper scene (`cases.scene.default_scene`: its materials, Fn, mu, dx = 0.2 mm) with motion.w = 0, load.ft = 0
 and load.ft_amplitude = x for x = 0.3, 0.6, 0.9 (Ft = x mu Fn sin(2 pi k/24), 24 steps per period, the default),
@@ -17,6 +18,13 @@ cache, FFTW wisdom), --repeats runs round robin; reported as medians:
   period (/summary dissipation_per_period) against the Mindlin-Deresiewicz loop area
   4 mu Fn U0 [6/5 - x - x(1-x)^(2/3) - (6/5)(1-x)^(5/3)]; the paper's nu2 = 0.5 makes Mindlin's closed form a few
   0.1 % off in U (pitfall P10), more in the loop area (docs/oscillating_loads.md).
+
+--accuracy instead: (1) the Mindlin-Deresiewicz cycle (2 periods of 24 steps, the second compared) at
+dx = 0.4 / 0.2 / 0.1 mm (a/12, a/24, a/48) for the paper's materials and for two identical bodies with nu = 0 and
+the same E* (where the closed form is exact), the loop error max |U - U_MD| / U(F*) and the frictional work of the
+cycle against the closed form; (2) four histories of varying Fn and Ft without rolling on the default grid (a/12),
+the 3-D U against the 1-D MDR model with per-spring memory (max |U_3D - U_MDR| / max |U_MDR|) and the work per
+period of both (theory §11.3); (3) the same with rolling at w = 0.23, both settings, where the MDR is not exact.
 """
 import argparse
 import json
@@ -69,13 +77,71 @@ def accuracy(scene, result, x):
     return loop, result.summary["dissipation_per_period"] / cm.cycle_dissipation(x) - 1.0
 
 
+NU0 = {"materials.E1": 11.5997, "materials.nu1": 0.0, "materials.E2": 11.5997, "materials.nu2": 0.0}
+HISTORIES = {"proportional (Ft = 0.3 mu Fn(t), Fn 0.5-1.5 Fn)":
+             {"load.ft": 0.3, "load.ft_amplitude": 0.15, "load.fn_amplitude": 0.5, "load.phase": -90.0},
+             "Fn +-40 % at constant Ft (f_t = 0.3)": {"load.ft": 0.3, "load.fn_amplitude": 0.4},
+             "Ft/Fn changing, Ft reversing (0.2 +- 0.3, Fn +-30 %)":
+             {"load.ft": 0.2, "load.ft_amplitude": 0.3, "load.fn_amplitude": 0.3},
+             "Ft 0 +- 0.6 (Mindlin-Deresiewicz)": {"load.ft": 0.0, "load.ft_amplitude": 0.6}}
+
+
+def accuracy_tables():
+    """The --accuracy tables (see the module docstring) as lists of dicts, printed as they come."""
+    md, hist = [], []
+    base = {"motion.w": 0, "motion.periods": 2, "load.ft": 0, "output.fields": "none"}
+    for dx in (0.4, 0.2, 0.1):
+        for name, mats in (("nu = 0", NU0), ("paper", {})):
+            for x in AMPLITUDES:
+                scene = api.load_scene(overrides={**base, **mats, "grid.dx": dx, "load.ft_amplitude": x})
+                loop, work = accuracy(scene, api.run(scene), x)
+                md.append(dict(materials=name, dx=dx, x=x, loop_error=loop, dissipation_error=work))
+                print(f"MD {name:6s} dx = {dx}: x = {x}: loop {100 * loop:.3f} %, work {100 * work:+.3f} %", flush=True)
+    plain = {"geometry.R": 40.0, "motion.periods": 2, "output.fields": "none"}
+    for w, angle in ((0.0, 90.0), (0.23, 0.0), (0.23, 90.0)):
+        for name, mats in (("nu = 0", NU0), ("paper", {})):
+            for label, loads in HISTORIES.items():
+                over = {**plain, **mats, **loads, "motion.w": w, "motion.angle": angle}
+                scene = rollcontact_scene(over)
+                bem, mdr = api.run(scene), api.run(scene.with_overrides({"solver.fidelity": "mdr"}))
+                U3, U1 = bem.history["U_x"], mdr.history["U_x"]
+                row = dict(history=label, materials=name, w=w, angle=angle,
+                           error=float(np.max(np.abs(U3 - U1)) / np.max(np.abs(U1))),
+                           work_bem=bem.summary["dissipation_per_period"],
+                           work_mdr=mdr.summary["dissipation_per_period"], grid_dx=scene.grid.dx)
+                hist.append(row)
+                print(f"MDR {name:6s} w = {w} angle {angle:g}: {label}: max|U3 - U1|/max|U1| = "
+                      f"{100 * row['error']:.3f} %, work per period {row['work_bem']:.4g} / {row['work_mdr']:.4g} "
+                      "N mm (3-D / MDR)", flush=True)
+    return md, hist
+
+
+def rollcontact_scene(overrides):
+    """A scene with only the given keys (the geometry from geometry.R), not the paper scene's."""
+    from rollcontact.cases.scene.scene import Scene
+    data = {}
+    for key, value in overrides.items():
+        sec, name = key.split(".")
+        data.setdefault(sec, {})[name] = value
+    return Scene.from_dict(data)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per amplitude (median; default 5)")
     parser.add_argument("--periods", type=int, default=4, help="periods per run (default 4)")
     parser.add_argument("--out", default=str(HERE / "results" / "oscillating_loads.json"), help="JSON output")
+    parser.add_argument("--accuracy", action="store_true", help="the accuracy tables instead of the timing")
     args = parser.parse_args(argv)
+    if args.accuracy:
+        md, hist = accuracy_tables()
+        out = args.out if args.out != parser.get_default("out") else str(HERE / "results" /
+                                                                           "oscillating_loads_accuracy.json")
+        Path(out).write_text(json.dumps({"date": time.strftime("%Y-%m-%d"), "mindlin_deresiewicz": md,
+                                         "mdr": hist}, indent=1) + "\n")
+        print(f"written to {out}")
+        return
     scenes = {x: api.load_scene(overrides={"motion.w": 0, "load.ft": 0, "load.ft_amplitude": x,
                                            "motion.periods": args.periods, "output.fields": "none"})
               for x in AMPLITUDES}

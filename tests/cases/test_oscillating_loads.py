@@ -127,3 +127,20 @@ def test_plot_of_an_oscillating_run_draws_the_hysteresis_loop_and_the_work_per_p
     assert str(png) in capsys.readouterr().out and (tmp_path / "plots" / "md_loads.pdf").stat().st_size > 0
     image = mpimg.imread(png)
     assert image.shape[0] > 300 and image.shape[1] > 600 and image[..., :3].std() > 0.05   # drawn, not blank
+
+
+def test_plot_of_a_phase_sweep_and_limit_search_draws_the_phase_figures(tmp_path, capsys):
+    # the 1-D MDR model keeps this fast; the figures do not depend on the model. The probes of the limit search
+    # (OUTDIR/runs) are the phase sweep's runs.
+    from rollcontact.cases.cli.main import main as run_cli
+
+    sc = scene({"ft": 0.4, "ft_amplitude": 0.2}, {"w": 0.23, "periods": 6}, solver={"fidelity": "mdr"},
+               output={"fields": "none"})
+    report = rollcontact.limit_search(sc, {"motion.w": [0.23], "load.phase": [0.0, 180.0]}, tmp_path / "phase",
+                                      tol=0.05, jobs=1)
+    assert all(row["status"] == "ok" for row in report.rows), report.rows
+    assert run_cli(["plot", str(tmp_path / "phase"), "-o", str(tmp_path / "plots")]) == 0
+    out = capsys.readouterr().out
+    for stem in ("phase_phase", "phase_phase_limits"):
+        png = tmp_path / "plots" / f"{stem}.png"
+        assert str(png) in out and png.stat().st_size > 10000
