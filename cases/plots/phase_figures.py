@@ -170,12 +170,38 @@ def phase_limits_figure(rows, title, reference=None):
     return fig
 
 
-def plot_phase(folder: Path, points_files, out_dir, overwrite=False) -> list:
-    """The phase figures of a folder whose runs differ in load.phase (none otherwise)."""
+def phase_table(points) -> list[str]:
+    """Markdown rows: per setting and amplitude, the state (s shakedown, R ratcheting, ? otherwise) and the work of
+    the last period / (mu Fn U0) at each phase."""
+    key = _amplitude_key(points)
+    phases = sorted({p.phase for p in points})
+    lines = [f"| setting | {key} | " + " | ".join(f"{ph:g}°" for ph in phases) + " |",
+             "|---|---|" + "---|" * len(phases)]
+    for angle in sorted({p.angle for p in points}):
+        for amp in sorted({getattr(p, key) for p in points if p.angle == angle}):
+            cells = []
+            for ph in phases:
+                hit = [p for p in points if p.angle == angle and getattr(p, key) == amp and p.phase == ph]
+                if not hit:
+                    cells.append("")
+                    continue
+                p = hit[0]
+                mark = {"shakedown": "s", "ratcheting": "R"}.get(p.state, "?")
+                cells.append(f"{mark} {p.work:.3g}" if p.work is not None else mark)
+            lines.append(f"| {_setting(angle)[0]} | {amp:g} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def plot_phase(folder: Path, points_files, out_dir, overwrite=False, out=print) -> list:
+    """The phase figures of a folder whose runs differ in load.phase (none otherwise); prints the table of the
+    states and works per period (phase_table)."""
     points = read_phase_points(points_files)
     paths = []
     stem = folder.resolve().name
     if points and varies_phase(points):
+        out("state (s shakedown, R ratcheting) and frictional work of the last period / (mu Fn U0) by phase:")
+        for line in phase_table(points):
+            out(line)
         paths += save_figure(phase_figure(points, stem), out_dir, f"{stem}_phase", overwrite)
     limits = folder / "limits.csv"
     rows = read_phase_limits(limits) if limits.exists() else []

@@ -380,5 +380,6 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
     paths += save_figure(limits_figure(points, limits, title), out_dir, f"{stem}_limits", overwrite)
     paths += save_figure(ratcheting_figure(points, title), out_dir, f"{stem}_ratcheting", overwrite)
     from rollcontact.cases.plots.phase_figures import plot_phase      # runs differing in load.phase, if any
-    paths += plot_phase(folder, sorted(folder.glob("*.h5")) + sorted(folder.glob("runs/*.h5")), out_dir, overwrite)
+    paths += plot_phase(folder, sorted(folder.glob("*.h5")) + sorted(folder.glob("runs/*.h5")), out_dir, overwrite,
+                        out)
     return paths
