@@ -156,8 +156,8 @@ def simulate_mdr(*, R, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1,
     vary within each period, theory §11.3); Fn and Ft are then its means (the normalisations use them) and the
     springs reach the contact radius of its largest Fn plus W. Each spring keeps its own slip memory (its
     anchor) whatever Fn does; a spring leaving contact is released and re-attaches unstretched.
-    The history's 'dissipation' is the frictional work of each step (N mm): G* ds sum_i u_i (v_i - v_i'), the end-of-step
-    spring force times the slip (anchor increment) of the step, as solver.rolling.energy does for the 3-D model.
+    The history's 'dissipation' is the frictional work of each step (N mm): G* ds sum_i u_i (v_i - v_i'), the
+    end-of-step spring force times the slip (anchor increment) of the step, as solver.rolling.energy does in 3-D.
     """
     R, E_star, G_star, Fn, mu, dW, periods, ramp_steps = _checked_inputs(R, E_star, G_star, Fn, mu, Ft, W, dW,
                                                                          periods, ramp_steps)

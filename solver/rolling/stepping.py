@@ -189,8 +189,8 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
     op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.rolling.profiles;
     Fn (N) the normal force, constant unless the path carries one per step (`path.normal_forces`, checked here
     before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
-    carries the frictional work of its step (solver.rolling.energy.frictional_work). Raises ContactEdgeError if the contact reaches
-    the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a solver fails.
+    carries the frictional work of its step (solver.rolling.energy.frictional_work). Raises ContactEdgeError if
+    the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a solver fails.
     """
     if not (Fn > 0):
         raise InputError(f"load.Fn = {Fn} N: must be > 0")
@@ -213,7 +213,8 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             move = centre - path.centres[state.step]
             guess = shifted_field(state.pressure, round(move[1] / grid.dy), round(move[0] / grid.dx))
         normal, tangential, outer = solve_coupled_step(
-            op, h, Fn if path.normal_forces is None else path.normal_forces[n], path.forces[n], state.pressure, state.traction, mu=mu,
+            op, h, Fn if path.normal_forces is None else path.normal_forces[n], path.forces[n], state.pressure,
+            state.traction, mu=mu,
             normal_params=params.normal, tangential_params=params.tangential,
             coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess)
         _check_inside(normal.contact, n, centre)

@@ -120,7 +120,8 @@ def test_plot_of_an_oscillating_run_draws_the_hysteresis_loop_and_the_work_per_p
     import matplotlib.image as mpimg
     from rollcontact.cases.cli.main import main as run_cli
 
-    sc = scene({"ft_amplitude": 0.6}, {"steps_per_period": 16}, output={"fields": "none"})      # no maps: the loads figure is what is tested
+    # no fields, no maps: the loads figure is what is tested
+    sc = scene({"ft_amplitude": 0.6}, {"steps_per_period": 16}, output={"fields": "none"})
     rollcontact.run(sc, tmp_path / "md.h5")
     assert run_cli(["plot", str(tmp_path / "md.h5"), "-o", str(tmp_path / "plots")]) == 0
     png = tmp_path / "plots" / "md_loads.png"

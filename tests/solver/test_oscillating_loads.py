@@ -38,7 +38,8 @@ def test_schedule_at_rest_follows_the_sine_and_starts_where_the_ramp_ends():
     s = np.sin(2 * np.pi * k / 24 + np.radians(30.0))
     assert np.allclose(path.forces[3:27, 0], 4.0 + 3.0 * s) and np.allclose(path.forces[27:, 0], 4.0 + 3.0 * s)
     assert np.allclose(path.normal_forces[3:27], FN + 5.0 * s)
-    # reversal flags at the discrete extremes of the schedule (k = 4: 30 + 60 = 90 deg, k = 16: 270 deg) and the period end
+    # reversal flags at the discrete extremes of the schedule (k = 4: 30 + 60 = 90 deg, k = 16: 270 deg) and the
+    # period end
     assert list(np.flatnonzero(path.reversal[3:27]) + 1) == [4, 16, 24]
     assert list(path.period_ends()) == [2, 26, 50]
 
