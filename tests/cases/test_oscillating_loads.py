@@ -130,6 +130,24 @@ def test_plot_of_an_oscillating_run_draws_the_hysteresis_loop_and_the_work_per_p
     assert image.shape[0] > 300 and image.shape[1] > 600 and image[..., :3].std() > 0.05   # drawn, not blank
 
 
+def test_phase_figure_and_table_of_runs_differing_in_phase(tmp_path):
+    from rollcontact.cases.plots.phase_figures import plot_phase
+
+    sc = scene({"ft": 0.4, "ft_amplitude": 0.2}, {"w": 0.23, "periods": 4}, solver={"fidelity": "mdr"})
+    for phase in (0.0, 90.0, 180.0):
+        rollcontact.run(sc.with_overrides({"load.phase": phase}), tmp_path / f"p{phase:g}.h5")
+    lines = []
+    paths = plot_phase(tmp_path, sorted(tmp_path.glob("*.h5")), tmp_path / "plots", out=lines.append)
+    assert [p.name for p in paths] == [f"{tmp_path.name}_phase.png", f"{tmp_path.name}_phase.pdf"]
+    assert paths[0].stat().st_size > 10000
+    # the table: one row per setting and amplitude, a state and a work per phase
+    assert lines[1].startswith("| setting | ft_amplitude | 0° | 90° | 180° |")
+    cells = lines[3].split("|")[1:-1]
+    assert cells[:2] == [" W ⊥ Ft ", " 0.2 "] and len(cells) == 5
+    assert all(c.split()[0] in ("s", "R", "?") and float(c.split()[1]) > 0 for c in cells[2:])
+
+
+@pytest.mark.slow
 def test_plot_of_a_phase_sweep_and_limit_search_draws_the_phase_figures(tmp_path, capsys):
     # the 1-D MDR model keeps this fast; the figures do not depend on the model. The probes of the limit search
     # (OUTDIR/runs) are the phase sweep's runs.
