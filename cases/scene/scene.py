@@ -191,7 +191,8 @@ class Scene(SceneLimits):
         The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
         checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi
         in [-1, 1] is monotone in s on either side of its zero, so its maximum is at s = +1 or s = -1, and
-        |Ft| < mu Fn holds at every phase iff A < 1 + B - ft and A < 1 - B + ft.
+        |Ft| < mu Fn holds at every phase iff |ft + A| < 1 + B and |ft - A| < 1 - B, i.e. (ft, A >= 0)
+        ft + B - 1 < A < min(1 + B - ft, 1 - B + ft).
         """
         ld = self.load
         if not self.oscillating:
@@ -202,11 +203,14 @@ class Scene(SceneLimits):
         A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
         use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
         if use >= 1.0:
+            lower, upper = ft + B - 1.0, min(1.0 + B - ft, 1.0 - B + ft)
+            allowed = (f"ft_amplitude < {upper:.6g}" if lower < 0 else
+                       f"{lower:.6g} < ft_amplitude < {upper:.6g}" if lower < upper else
+                       "none: lower load.ft below 1")
             raise SceneError(
                 f"[load] ft_amplitude = {A!r} with ft = {ft:.6g}, fn_amplitude = {B!r}: |Ft| reaches {use:.4g} "
-                f"mu Fn during the cycle (gross sliding); allowed range is ft_amplitude < "
-                f"{max(0.0, min(1.0 + B - ft, 1.0 - B + ft)):.6g} at this ft and fn_amplitude (|Ft| < mu Fn "
-                "at every phase)")
+                f"mu Fn during the cycle (gross sliding; at the smallest Fn, Fn (1 - fn_amplitude), when ft is "
+                f"large); allowed range is {allowed} at this ft and fn_amplitude (|Ft| < mu Fn at every phase)")
 
     # --- derived quantities ----------------------------------------------------------------------
     @property

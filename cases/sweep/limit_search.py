@@ -63,9 +63,10 @@ class _LimitSearch:
         self.probes, self.undecided = 0, []
         self.range = _SEARCH_RANGE[searched]
         if searched == "load.ft" and scene.oscillating:
-            # oscillating loads slide (and are refused) from f_t = 1 + fn_amplitude - ft_amplitude on
-            ld = scene.load
-            self.range = (self.range[0], min(self.range[1], 1.0 + ld.fn_amplitude - ld.ft_amplitude - 0.005))
+            # oscillating loads slide (and are refused, cases.scene.Scene._check_oscillation) from
+            # f_t = min(1 + B - A, 1 - B + A) on (A = ft_amplitude, B = fn_amplitude)
+            A, B = scene.load.ft_amplitude, scene.load.fn_amplitude
+            self.range = (self.range[0], min(self.range[1], 1.0 + B - A - 0.005, 1.0 - B + A - 0.005))
 
     def run(self, x, periods) -> str:
         values = dict(self.values)

@@ -177,3 +177,15 @@ def test_a_restart_of_an_oscillating_run_continues_its_schedule(tmp_path):
     for name in ("U_x", "Fn", "F_x", "dissipation"):
         assert np.allclose(again.history[name], full.history[name], rtol=1e-9, atol=1e-12), name
     assert again.summary["dissipation_per_period"] == pytest.approx(full.summary["dissipation_per_period"], rel=1e-9)
+
+
+def test_a_large_mean_force_slides_at_the_smallest_normal_force():
+    # |ft - A| < 1 - B at sin = -1: with ft = 0.82 and Fn +-30 %, Ft reaches 0.82/0.7 mu Fn without an Ft amplitude;
+    # an in-phase Ft amplitude 0.12 < A < 0.48 lowers Ft where Fn is smallest and is allowed
+    with pytest.raises(SceneError, match=r"allowed range is 0\.12 < ft_amplitude < 0\.48"):
+        scene({"ft": 0.82, "fn_amplitude": 0.3})
+    scene({"ft": 0.82, "fn_amplitude": 0.3, "ft_amplitude": 0.13})
+    with pytest.raises(SceneError, match=r"allowed range is 0\.4 < ft_amplitude < 0\.6"):
+        scene({"ft": 0.9, "fn_amplitude": 0.5})
+    with pytest.raises(SceneError, match=r"none: lower load\.ft below 1"):
+        scene({"ft": 1.0, "fn_amplitude": 0.5, "ft_amplitude": 0.5})
