@@ -16,6 +16,7 @@ import csv
 from dataclasses import dataclass
 from pathlib import Path
 
+import h5py
 import numpy as np
 import matplotlib.pyplot as plt
 
@@ -64,7 +65,10 @@ def read_phase_points(files) -> list[PhasePoint]:
 
 
 def varies_phase(points) -> bool:
-    return len({p.phase for p in points}) > 1
+    """True when the runs differ in phase and no (setting, amplitudes, phase) repeats at another f_t or w (the
+    probes of a limit search do: their map would mix loads)."""
+    keys = [(p.angle, p.ft_amplitude, p.fn_amplitude, p.phase) for p in points]
+    return len({p.phase for p in points}) > 1 and len(set(keys)) == len(keys)
 
 
 def _amplitude_key(points) -> str:
@@ -130,11 +134,24 @@ def phase_figure(points, title):
     return fig
 
 
+def _search_overrides(path) -> dict:
+    """The --set items of the limit search that wrote `path` (limits.csv), from limits.h5 beside it: key -> text."""
+    try:
+        with h5py.File(Path(path).with_suffix(".h5"), "r") as h5:
+            items = [s.decode() if isinstance(s, bytes) else str(s) for s in h5.attrs.get("overrides", [])]
+    except OSError:
+        return {}
+    return dict(item.split("=", 1) for item in items if "=" in item)
+
+
 def read_phase_limits(path) -> list[dict]:
-    """Rows of a limit search's limits.csv with load.phase (deg), the amplitudes, motion.angle and the bracket."""
+    """Rows of a limit search's limits.csv with load.phase (deg), the amplitudes (varied, or set with --set),
+    motion.angle and the bracket."""
     rows = []
+    fixed = _search_overrides(path)
     with open(path, newline="") as fh:
         for row in csv.DictReader(fh):
+            row = {**fixed, **{k: v for k, v in row.items() if v not in (None, "")}}
             if row.get("status") not in ("ok", "widened") or "load.phase" not in row:
                 continue
             rows.append(dict(phase=float(row["load.phase"]) % 360.0, angle=_fold(row.get("motion.angle") or 90.0),
