@@ -11,7 +11,7 @@ in stick s = 0 to the solver's tolerance and the element adds nothing. An elemen
 the step slips at the bound, so this rule is exact for it, where a midpoint traction (tau_n + tau_n-1)/2 would
 count part of its slip at the stick traction. Over a closed load cycle (the elastic state returns) the sum
 equals the loop area of F against U up to the load-step discretisation (theory §11.2; tests/solver/
-test_oscillating_loads.py measures both).
+test_load_schedule.py measures both).
 """
 import numpy as np
 
