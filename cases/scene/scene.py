@@ -6,8 +6,9 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
     [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry)
     [load]      Fn; mu; ft (= Ft/(mu Fn)) or Ft; load_angle (direction of Ft from the x axis);
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
-                ramp_steps increments: unloading and reversal)
-    [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW
+                ramp_steps increments: unloading and reversal); ft_amplitude, fn_amplitude, phase,
+                cycles_per_period (loads oscillating within each period, docs/oscillating_loads.md)
+    [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW; steps_per_period
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
