@@ -3,13 +3,15 @@
 One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
 
     1. h_n = the undeformed profile shifted to the current sphere centre c_n (seed Eq. 7, any direction);
-    2. normal problem with constant Fn, warm-started from p_{n-1}           -> p_n, approach d_n;
+    2. normal problem with Fn (constant, or the step's Fn of an oscillating load), warm-started from p_{n-1}
+                                                                            -> p_n, approach d_n;
     3. bound g = mu p_n; tangential shift problem with the force F_n and the previous traction
        tau_{n-1} as memory                                                  -> tau_n, dU_n; U_n = U_{n-1} + dU_n;
     4. coupled materials only: repeat 2-3 with the coupling terms until both settle (solver.rolling.coupled).
 
 The path is prescribed: a loading phase (Fn alone, then the tangential force in `ramp_steps` increments,
-then any further force levels) followed by `periods` triangle-wave periods of the centre,
+then any further force levels) followed by `periods` triangle-wave periods of the centre (loads that oscillate
+within each period: solver.rolling.schedule; the frictional work of each step: solver.rolling.energy),
 0 -> +W -> 0 -> -W -> 0, in steps of W/ceil(W/dW) along the rolling direction. Rolling is pure rolling of a
 rigid sphere: only the profile moves, there is no rigid creepage (theory §5.1 note v).
 
@@ -190,7 +192,8 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
     Fn (N) the normal force, constant unless the path carries one per step (`path.normal_forces`, checked here
     before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
     carries the frictional work of its step (solver.rolling.energy.frictional_work). Raises ContactEdgeError if
-    the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a solver fails.
+    the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
+    solver fails.
     """
     if not (Fn > 0):
         raise InputError(f"load.Fn = {Fn} N: must be > 0")
