@@ -147,7 +147,6 @@ def test_phase_figure_and_table_of_runs_differing_in_phase(tmp_path):
     assert all(c.split()[0] in ("s", "R", "?") and float(c.split()[1]) > 0 for c in cells[2:])
 
 
-@pytest.mark.slow
 def test_plot_of_a_phase_sweep_and_limit_search_draws_the_phase_figures(tmp_path, capsys):
     # the 1-D MDR model keeps this fast; the figures do not depend on the model. The probes of the limit search
     # (OUTDIR/runs) repeat phases at other f_t: no phase map of them, only the limits.
