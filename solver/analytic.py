@@ -125,6 +125,23 @@ class CattaneoMindlin:
             raise InputError(f"f_t = {f_t!r}: unloading branch needs -{f_t_max} <= f_t <= {f_t_max}")
         return self.shift(f_t_max) - 2.0 * self.shift(0.5 * (f_t_max - f_t))
 
+    def reloading_shift(self, f_t_max, f_t) -> float:
+        """Mindlin-Deresiewicz: shift (mm) on the reloading branch from -f_t_max back to f_t <= f_t_max.
+
+        U(f) = -U_load(f_max) + 2 U_load((f_max + f)/2)   (theory §11.2; the unloading branch mirrored).
+        """
+        return -self.unloading_shift(f_t_max, -f_t)
+
+    def cycle_dissipation(self, f_t_max) -> float:
+        """Energy (N mm) dissipated per full cycle between +f_t_max and -f_t_max (the loop area, theory §11.2):
+
+        dW = 4 mu Fn U0 [6/5 - x - x (1 - x)^(2/3) - (6/5)(1 - x)^(5/3)],  x = f_t_max (-> 4 mu Fn U0 x^3/27).
+        """
+        check_ft(f_t_max)
+        x = f_t_max
+        bracket = 1.2 - x - x * (1.0 - x) ** (2.0 / 3.0) - 1.2 * (1.0 - x) ** (5.0 / 3.0)
+        return 4.0 * self.mu * self.hertz.Fn * self.U0 * bracket
+
 
 @dataclass(frozen=True)
 class HertzEllipse:

@@ -347,10 +347,14 @@ def compare_maps_figure(va: RunView, sa: int, vb: RunView, sb: int):
 
 
 def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwrite=False) -> list:
-    """All figures of one run into out_dir: <stem>_history, _maps, _centrelines (PNG + PDF), and when the file holds
-    subsurface stresses _subsurface_step<N> and _subsurface_maxima (cases.plots.subsurface_figures)."""
+    """All figures of one run into out_dir: <stem>_history, _maps, _centrelines (PNG + PDF), <stem>_loads for a run
+    with oscillating loads (cases.plots.load_figures), and when the file holds subsurface stresses
+    _subsurface_step<N> and _subsurface_maxima (cases.plots.subsurface_figures)."""
     stem = view.path.stem
     paths = save_figure(history_figure([view]), out_dir, f"{stem}_history", overwrite)
+    if view.scene.oscillating:       # loads oscillating within each period: hysteresis loop, work per period
+        from rollcontact.cases.plots.load_figures import loads_figure
+        paths += save_figure(loads_figure(view), out_dir, f"{stem}_loads", overwrite)
     if not view.has_fields:
         if step is not None:
             raise PlotError(view.no_fields_note().replace("only the history figure is drawn",

@@ -368,7 +368,8 @@ def ratcheting_figure(points, title):
 
 
 def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) -> list:
-    """The three sweep figures of `folder` into out_dir (default: the folder); prints the fitted kappas."""
+    """The three sweep figures of `folder` into out_dir (default: the folder), and the phase figures of
+    cases.plots.phase_figures when its runs differ in load.phase; prints the fitted kappas."""
     folder = Path(folder)
     points = read_folder(folder, notes)
     out_dir = Path(out_dir) if out_dir else folder
@@ -394,6 +395,9 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
     if len(study_angles(points)) >= 3:
         out(angle_fit_text(points, limits))
         paths += save_figure(angle_figure(points, limits, title), out_dir, f"{stem}_angles", overwrite)
+    from rollcontact.cases.plots.phase_figures import plot_phase      # runs differing in load.phase, if any
+    paths += plot_phase(folder, sorted(folder.glob("*.h5")) + sorted(folder.glob("runs/*.h5")), out_dir, overwrite,
+                        out)
     return paths
 
 

@@ -19,8 +19,10 @@ HISTORY_UNITS = {
     "step": "-", "period": "-", "W_x": "mm", "W_y": "mm", "approach": "mm", "Fn": "N", "contact_area": "mm^2",
     "stick_area": "mm^2", "U_x": "mm", "U_y": "mm", "U_perp": "mm", "F_x": "N", "F_y": "N", "iterations": "-",
     "normal_iterations": "-", "tangential_iterations": "-", "outer_iterations": "-", "residual": "-",
-    "wall_time": "s",
+    "wall_time": "s", "dissipation": "N mm",
 }
+#: dissipation: the frictional work of the step, -sum tau . s dA with the end-of-step traction tau and the step's
+#: slip s (solver.rolling.energy; theory.md §11.2).
 HISTORY_NAMES = tuple(HISTORY_UNITS)
 
 #: /fields: snapshots of shape (stored steps, ny, nx), name -> unit. p, tau: pressure and traction exerted by the
@@ -40,8 +42,9 @@ SUMMARY_UNITS = {
     "U_stat": "mm", "u_stat": "-", "U0": "mm", "a": "mm", "d": "mm", "p0": "MPa", "f_t": "-", "w": "-",
     "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
-    "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s",
+    "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
 }
+#: dissipation_per_period: the frictional work of the last complete period (sum of /history/dissipation over it).
 
 #: /subsurface: z (depths below the surface, mm), step (the stored steps), and per name a dataset of shape
 #: (snapshots, nz, ny, nx): the stress components in the frame (x, y, z = depth into the substrate), tension

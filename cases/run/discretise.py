@@ -9,17 +9,26 @@ import numpy as np
 from rollcontact.bem.errors import InputError, SceneError
 from rollcontact.bem.grid import MAX_ELEMENTS, Grid, contact_box
 from rollcontact.cases.scene.scene import Scene
+from rollcontact.solver.rolling.schedule import LoadOscillation
 from rollcontact.solver.rolling.stepping import LoadPath, build_path
 
 
 def scene_path(scene: Scene) -> LoadPath:
     """The scene's loading phase and oscillation as a LoadPath (solver.rolling.stepping.build_path)."""
     e_f = np.array(scene.load_direction)
-    mu_fn = scene.load.mu * scene.load.Fn
-    return build_path(force=scene.Ft * e_f, ramp_steps=scene.load.ramp_steps,
-                      levels=[lv * mu_fn * e_f for lv in scene.load.levels],
+    ld = scene.load
+    mu_fn = ld.mu * ld.Fn
+    oscillation = None
+    if scene.oscillating:   # theory §11.2-11.3; the defaults leave the path as it was (normal_forces None)
+        oscillation = LoadOscillation(force_amplitude=tuple(ld.ft_amplitude * mu_fn * e_f),
+                                      normal_amplitude=ld.fn_amplitude * ld.Fn, phase=ld.phase,
+                                      cycles_per_period=ld.cycles_per_period,
+                                      steps_per_period=scene.motion.steps_per_period)
+    return build_path(force=scene.Ft * e_f, ramp_steps=ld.ramp_steps,
+                      levels=[lv * mu_fn * e_f for lv in ld.levels],
                       rolling_direction=scene.rolling_direction, amplitude=scene.amplitude,
-                      max_step=scene.motion.dW, periods=scene.motion.periods)
+                      max_step=scene.motion.dW, periods=scene.motion.periods, normal_force=ld.Fn,
+                      oscillation=oscillation)
 
 
 def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
@@ -35,6 +44,9 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     semi_x, semi_y = scene.semi_axes
     if scene.shape in ("cylinder", "file") or (scene.shape == "ellipsoid" and len(set(scene.radii)) > 1):  # estimates: 10 %
         semi_x, semi_y = 1.1 * semi_x, 1.1 * semi_y
+    if scene.load.fn_amplitude > 0:   # the largest Fn of an oscillating normal load: a ~ Fn^(1/3)
+        grow = (1.0 + scene.load.fn_amplitude) ** (1.0 / 3.0)
+        semi_x, semi_y = grow * semi_x, grow * semi_y
     dx, dy = scene.spacing
     if path is not None:
         centres = path.centres

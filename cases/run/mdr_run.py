@@ -15,12 +15,24 @@ import time
 import numpy as np
 
 from rollcontact.bem.errors import InputError
-from rollcontact.solver.mdr.simulate import simulate_mdr
+from rollcontact.solver.mdr.simulate import LoadSchedule, simulate_mdr
 
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import HISTORY_NAMES, RunResult
 from rollcontact.cases.scene.geometry import AXISYMMETRIC
+from rollcontact.cases.run.discretise import scene_path
+from rollcontact.cases.run.summary import dissipation_per_period
 from rollcontact.cases.scene.scene import Scene
+
+
+def mdr_schedule(scene: Scene) -> LoadSchedule:
+    """The scene's load path (cases.run.discretise.scene_path, the BEM run's path) as the MDR model's schedule:
+    the centres along the rolling direction, the tangential force along the force direction, Fn per step."""
+    path = scene_path(scene)
+    e_r, e_f = np.array(scene.rolling_direction), np.array(scene.load_direction)
+    normal = path.normal_forces if path.normal_forces is not None else np.full(path.n_steps, scene.load.Fn)
+    return LoadSchedule(Fn=normal, Ft=path.forces @ e_f, centre=path.centres @ e_r, period=path.period,
+                        dW_used=path.dW)
 
 
 def run_mdr(scene: Scene, *, progress=None) -> RunResult:
@@ -44,26 +56,29 @@ def run_mdr(scene: Scene, *, progress=None) -> RunResult:
     res = simulate_mdr(**shape, E_star=pair.E_star, G_star=pair.G_star, Fn=scene.load.Fn, mu=scene.load.mu,
                        Ft=scene.Ft, W=scene.amplitude, dW=scene.motion.dW,
                        periods=scene.motion.periods if scene.amplitude > 0 else 0,
-                       ramp_steps=scene.load.ramp_steps, shakedown_tol=scene.solver.shakedown_tol)
+                       ramp_steps=scene.load.ramp_steps, shakedown_tol=scene.solver.shakedown_tol,
+                       schedule=mdr_schedule(scene) if scene.oscillating else None)
     wall = time.perf_counter() - t0
     h = res.history
     n = len(h["step"])
     e_r, e_f = np.array(scene.rolling_direction), np.array(scene.load_direction)
     zero = np.zeros(n)
     history = dict(step=h["step"], period=h["period"], W_x=h["W"] * e_r[0], W_y=h["W"] * e_r[1],
-                   approach=h["approach"], Fn=np.full(n, scene.load.Fn),
+                   approach=h["approach"], Fn=h["Fn"],
                    contact_area=math.pi * h["contact_length"] ** 2 / 4,
                    stick_area=math.pi * h["stick_length"] ** 2 / 4, U_x=h["U"] * e_f[0], U_y=h["U"] * e_f[1],
                    U_perp=zero, F_x=h["Ft"] * e_f[0], F_y=h["Ft"] * e_f[1], iterations=zero.astype(int),
                    normal_iterations=zero.astype(int), tangential_iterations=zero.astype(int),
-                   outer_iterations=zero.astype(int), residual=zero, wall_time=np.full(n, wall / max(n, 1)))
+                   outer_iterations=zero.astype(int), residual=zero, wall_time=np.full(n, wall / max(n, 1)),
+                   dissipation=h["dissipation"])
     assert set(history) == set(HISTORY_NAMES)
     cls = res.classification
     summary = dict(fidelity="mdr", a=res.a, d=res.d, p0=1.5 * scene.load.Fn / (math.pi * res.a ** 2), U0=res.U0,
                    f_t=res.f_t, w=res.w, W=scene.amplitude, dW_used=res.dW_used, springs=res.n_springs,
                    ds=res.ds, steps=n, steps_planned=n, iterations=0, wall_time=wall,
-                   U_stat=res.U_stat, u_stat=res.U_stat / res.U0)
-    if scene.amplitude > 0 and scene.motion.periods > 0:
+                   U_stat=res.U_stat, u_stat=res.U_stat / res.U0,
+                   dissipation_per_period=dissipation_per_period(h["period"], history))
+    if (scene.amplitude > 0 or scene.oscillating) and scene.motion.periods > 0:
         summary.update(state=cls.state, periods_to_shakedown=cls.periods_to_shakedown,
                        U_sd=None if cls.u_sd is None else cls.u_sd * res.U0, u_sd=cls.u_sd,
                        dU_per_period=cls.dU_per_period, du=cls.du)

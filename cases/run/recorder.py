@@ -32,8 +32,8 @@ class StepRecorder:
             for k in HISTORY_NAMES:
                 if k == "U_perp" and k not in stored:      # a file written before U_perp existed
                     self.history[k] = list(self._across(np.asarray(stored["U_x"]), np.asarray(stored["U_y"]))[:n])
-                else:
-                    self.history[k] = list(np.asarray(stored[k])[:n])
+                else:                                      # dissipation: NaN in files written before it existed
+                    self.history[k] = list(np.asarray(stored[k])[:n]) if k in stored else [np.nan] * n
             steps, fields = restart.snapshots()
             self.stored = [int(s) for s in steps]
             self.fields = {k: list(fields[k]) for k in FIELD_NAMES}
@@ -55,7 +55,7 @@ class StepRecorder:
                    iterations=nr.iterations + tr.iterations,
                    normal_iterations=nr.iterations, tangential_iterations=tr.iterations,
                    outer_iterations=rec.outer_iterations, residual=max(nr.residual, tr.residual),
-                   wall_time=rec.wall_time)
+                   wall_time=rec.wall_time, dissipation=rec.dissipation)
         for k, v in row.items():
             self.history[k].append(v)
         if rec.step in self.snapshot_steps:

@@ -42,6 +42,7 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
         summary.update(U_stat=float(U[n_ramp]), u_stat=float(U[n_ramp] / U0))
     if n_done:
         summary["U_perp"] = float(U_perp[-1])
+    summary["dissipation_per_period"] = dissipation_per_period(path.period, history)
     if state_label:
         summary["state"] = state_label
     elif path.period.max() == 0:
@@ -58,6 +59,18 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
         else:
             summary["state"] = "incomplete"
     return summary
+
+
+def dissipation_per_period(period, history: dict) -> float | None:
+    """Frictional work of the last complete period (N mm): /history/dissipation summed over its steps; None when
+    no period is complete. period: the period index of every planned step (LoadPath.period)."""
+    period = np.asarray(period)
+    n_done = len(history["step"])
+    complete = [k for k in range(1, int(period.max()) + 1) if np.flatnonzero(period == k)[-1] < n_done]
+    if not complete:
+        return None
+    steps = np.flatnonzero(period == complete[-1])
+    return float(np.sum(np.asarray(history["dissipation"])[steps]))
 
 
 def format_summary(result: RunResult) -> str:
@@ -103,6 +116,8 @@ def format_summary(result: RunResult) -> str:
         walk = (f", {s['dU_perp_per_period']:.3e} mm in the last period" if s.get("dU_perp_per_period") is not None
                 else "")
         lines.append(f"sideways (across Ft): U_perp = {s['U_perp']:.6f} mm{walk}")
+    if s.get("dissipation_per_period") is not None and d.scene.oscillating:
+        lines.append(f"frictional work of the last period: {s['dissipation_per_period']:.6g} N mm")
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:

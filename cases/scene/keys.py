@@ -66,6 +66,13 @@ class Load:
     load_angle: float = _spec(0.0, -360, 360, unit="deg", doc="direction of Ft from the x axis")
     ramp_steps: int = _spec(1, 1, 10000, doc="increments from 0 to Ft")
     levels: list = _spec([], -1, 1, doc="further f_t levels after the ramp (unloading, reversal)")
+    # loads oscillating within each period (theory §11.2-11.3, cases.scene.scene._check_oscillation):
+    # f_t(theta) = ft + ft_amplitude sin(m theta + phase), Fn(theta) = Fn (1 + fn_amplitude sin(m theta + phase))
+    ft_amplitude: float = _spec(0.0, 0, 1, doc="amplitude of f_t around its mean ft, in units of mu Fn")
+    fn_amplitude: float = _spec(0.0, 0, 1, hi_open=True,
+                                doc="relative amplitude of Fn around Fn (1 would lift the sphere off)")
+    phase: float = _spec(0.0, -360, 360, unit="deg", doc="phase of the load oscillation relative to the rolling")
+    cycles_per_period: int = _spec(1, 1, 1000, doc="load cycles per period")
 
 
 @dataclass
@@ -77,6 +84,7 @@ class Motion:
     periods: int = _spec(10, 0, 100000, doc="oscillation periods")
     dW: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                              doc="largest rolling step (default: the element size dx)")
+    steps_per_period: int = _spec(24, 4, 100000, doc="steps of a period of oscillating loads without rolling (w = 0)")
 
 
 @dataclass

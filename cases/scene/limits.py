@@ -74,6 +74,10 @@ class SceneLimits:
                              f"steps exceed the limit of {MAX_STEPS} steps per run; allowed range is ramp_steps "
                              f"<= {(MAX_STEPS - 1) // (1 + len(ld.levels))}")
         W = self.amplitude
+        if W == 0 and self.oscillating and n_load + mo.periods * mo.steps_per_period > MAX_STEPS:
+            raise SceneError(f"[motion] periods = {mo.periods} x steps_per_period = {mo.steps_per_period} steps (loads "
+                             f"oscillating without rolling) exceed the limit of {MAX_STEPS} steps per run; allowed "
+                             f"range is periods <= {(MAX_STEPS - n_load) // mo.steps_per_period}")
         if not (W > 0 and mo.periods > 0):
             return
         ratio = W / mo.dW

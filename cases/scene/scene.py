@@ -7,8 +7,9 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
                 cone (slope), power (n, R), flat_rounded (b, R) (cases.scene.geometry)
     [load]      Fn; mu; ft (= Ft/(mu Fn)) or Ft; load_angle (direction of Ft from the x axis);
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
-                ramp_steps increments: unloading and reversal)
-    [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW
+                ramp_steps increments: unloading and reversal); ft_amplitude, fn_amplitude, phase,
+                cycles_per_period (loads oscillating within each period, docs/oscillating_loads.md)
+    [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW; steps_per_period
     [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction, distance
                 (transient): rolling on with creepage and spin, in
                 place of [motion] and a tangential load (Kalker's convention, solver.creep)
@@ -250,6 +251,39 @@ class Scene(SceneLimits):
                              "no static state exists (allowed range 0 <= Ft <= mu*Fn)")
         if mo.w is not None and mo.W is not None:
             raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
+        self._check_oscillation()
+
+    @property
+    def oscillating(self) -> bool:
+        """True when a load oscillates within each period (load.ft_amplitude or load.fn_amplitude > 0)."""
+        return self.load.ft_amplitude > 0 or self.load.fn_amplitude > 0
+
+    def _check_oscillation(self):
+        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
+
+        The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
+        checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi
+        in [-1, 1] is monotone in s on either side of its zero, so its maximum is at s = +1 or s = -1, and
+        |Ft| < mu Fn holds at every phase iff |ft + A| < 1 + B and |ft - A| < 1 - B, i.e. (ft, A >= 0)
+        ft + B - 1 < A < min(1 + B - ft, 1 - B + ft).
+        """
+        ld = self.load
+        if not self.oscillating:
+            return
+        if ld.levels:
+            raise SceneError(f"[load] levels = {ld.levels!r} cannot be combined with oscillating loads "
+                             "(ft_amplitude, fn_amplitude): give one or the other")
+        A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
+        use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
+        if use >= 1.0:
+            lower, upper = ft + B - 1.0, min(1.0 + B - ft, 1.0 - B + ft)
+            allowed = (f"ft_amplitude < {upper:.6g}" if lower < 0 else
+                       f"{lower:.6g} < ft_amplitude < {upper:.6g}" if lower < upper else
+                       "none: lower load.ft below 1")
+            raise SceneError(
+                f"[load] ft_amplitude = {A!r} with ft = {ft:.6g}, fn_amplitude = {B!r}: |Ft| reaches {use:.4g} "
+                f"mu Fn during the cycle (gross sliding; at the smallest Fn, Fn (1 - fn_amplitude), when ft is "
+                f"large); allowed range is {allowed} at this ft and fn_amplitude (|Ft| < mu Fn at every phase)")
 
     # --- derived quantities ----------------------------------------------------------------------
     @property

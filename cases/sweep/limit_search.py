@@ -63,8 +63,15 @@ class _LimitSearch:
     def __init__(self, base, overrides, values, searched, tol, runs_dir, outdir, log):
         self.base, self.overrides, self.values = base, list(overrides), dict(values)
         self.searched, self.tol, self.runs_dir, self.outdir, self.log = searched, tol, runs_dir, outdir, log
-        self.periods = build_scene(base, overrides, values).motion.periods
+        scene = build_scene(base, overrides, values)
+        self.periods = scene.motion.periods
         self.probes, self.undecided = 0, []
+        self.range = _SEARCH_RANGE[searched]
+        if searched == "load.ft" and scene.oscillating:
+            # oscillating loads slide (and are refused, cases.scene.Scene._check_oscillation) from
+            # f_t = min(1 + B - A, 1 - B + A) on (A = ft_amplitude, B = fn_amplitude)
+            A, B = scene.load.ft_amplitude, scene.load.fn_amplitude
+            self.range = (self.range[0], min(self.range[1], 1.0 + B - A - 0.005, 1.0 - B + A - 0.005))
 
     def run(self, x, periods, extend_from=None) -> tuple[str, Path]:
         """State and run file of the probe at `x` with `periods` periods (extend_from: a shorter run of it)."""
@@ -128,8 +135,8 @@ class _LimitSearch:
 
     def bracket(self, guess_lo, guess_hi):
         """Find lo (below the limit) and hi (above it), starting from the closed-form guesses."""
-        xmin, xmax = _SEARCH_RANGE[self.searched]
-        lo, hi = max(xmin, guess_lo), min(xmax, guess_hi)
+        xmin, xmax = self.range
+        lo, hi = min(max(xmin, guess_lo), xmax), min(xmax, guess_hi)
         step = _BRACKET_MARGIN
         while True:
             s = self.classify(lo)
@@ -141,6 +148,9 @@ class _LimitSearch:
                 raise RollcontactError(f"{self.searched} = {xmin}: still no shakedown at the lower end of the "
                                        f"search range [{xmin}, {xmax}]")
             lo, step = max(xmin, lo - step), 2 * step
+        if lo >= xmax:
+            raise RollcontactError(f"{self.searched} = {xmax:.6g}: still no ratcheting at the upper end of the "
+                                   f"search range [{xmin}, {xmax:.6g}]")
         step = _BRACKET_MARGIN
         while hi <= lo:
             hi = min(xmax, lo + step)

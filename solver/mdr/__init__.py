@@ -11,7 +11,8 @@ so that the closed forms (`limits`) do not load the compiled simulator.
 from importlib import import_module
 
 _WHERE = {"LimitBracket": "bisection", "shakedown_limit_ft": "bisection", "MDRResult": "simulate",
-          "simulate_mdr": "simulate"}
+          "simulate_mdr": "simulate",
+          "LoadSchedule": "simulate"}
 __all__ = list(_WHERE)
 
 

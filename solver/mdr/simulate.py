@@ -118,7 +118,8 @@ def _centre_path(W, dW, periods):
 
 class _LoadPath(NamedTuple):
     """Per step (loading steps first): the applied Ft (N), the centre c_n (mm) and the period index (0 during
-    loading); n_load loading steps, dW_used the centre step (mm), nq steps per quarter period."""
+    loading); n_load loading steps, dW_used the centre step (mm), nq steps per quarter period (0 for a given
+    schedule); Fn the normal force per step (N) or None for the constant Fn."""
 
     Ft: np.ndarray
     centre: np.ndarray
@@ -126,10 +127,23 @@ class _LoadPath(NamedTuple):
     n_load: int
     dW_used: float
     nq: int
+    Fn: np.ndarray | None = None
+
+
+class LoadSchedule(NamedTuple):
+    """A prescribed load path for `simulate_mdr` (theory §11.3): per step the normal force Fn (N, > 0), the
+    tangential force Ft (N, signed, along the force direction), the centre c (mm, along the rolling direction)
+    and the period index (0 during the loading phase); dW_used the centre step (mm, 0 without rolling)."""
+
+    Fn: np.ndarray
+    Ft: np.ndarray
+    centre: np.ndarray
+    period: np.ndarray
+    dW_used: float = 0.0
 
 
 def simulate_mdr(*, R=None, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1, n_springs=None,
-                 ds=None, shakedown_tol=DEFAULT_TOL, profile=None) -> MDRResult:
+                 ds=None, shakedown_tol=DEFAULT_TOL, profile=None, schedule: LoadSchedule | None = None) -> MDRResult:
     """Run the 1-D MDR model of oscillating rolling (theory §8.2); see the module docstring.
 
     R: sphere radius (mm), or profile: any axisymmetric profile of `solver.rolling.axisymmetric` (cone, power
@@ -141,6 +155,12 @@ def simulate_mdr(*, R=None, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_ste
     can ever touch is modelled.  Give either ds (mm) or n_springs (odd total count, rounded up to odd;
     default 4001, then ds = (a + W) / ((n_springs - 1)/2 - 1)).
     shakedown_tol: tolerance on the per-period increment |dU|/U0 passed to solver.rolling.shakedown.classify.
+    schedule: a LoadSchedule that replaces the path built from Ft, W, dW, periods and ramp_steps (loads that
+    vary within each period, theory §11.3); Fn and Ft are then its means (the normalisations use them) and the
+    springs reach the contact radius of its largest Fn plus W. Each spring keeps its own slip memory (its
+    anchor) whatever Fn does; a spring leaving contact is released and re-attaches unstretched.
+    The history's 'dissipation' is the frictional work of each step (N mm): G* ds sum_i u_i (v_i - v_i'), the
+    end-of-step spring force times the slip (anchor increment) of the step, as solver.rolling.energy does in 3-D.
     """
     if (R is None) == (profile is None):
         raise InputError("give either R (a sphere) or profile (an axisymmetric profile), not both or neither")
@@ -151,8 +171,15 @@ def simulate_mdr(*, R=None, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_ste
     U0 = mu * E_star * d_hertz / G_star
     if W >= a:
         raise InputError(f"W = {W!r} mm >= a = {a:.6g} mm: the seed's model needs w = W/a < 1 (seed Eq. 10)")
-    s, ds = _springs(a + W, ds, n_springs)
-    path = _load_path(Ft, float(W), dW, periods, ramp_steps)
+    if schedule is None:
+        s, ds = _springs(a + W, ds, n_springs)
+        path = _load_path(Ft, float(W), dW, periods, ramp_steps)
+    else:
+        path = _schedule_path(schedule)
+        periods = int(path.period.max())
+        Fn_max = float(np.max(path.Fn))
+        a_max = (HertzSphere(R, E_star, Fn_max) if profile is None else MDRContact(profile, E_star, Fn_max)).a
+        s, ds = _springs(a_max + W, ds, n_springs)
     gap = None if profile is None else profile.mdr
     hist, done, failure = _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz, gap)
     history = {key: val[:done] for key, val in hist.items()}
@@ -160,7 +187,7 @@ def simulate_mdr(*, R=None, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_ste
     history["period"] = path.period[:done]
 
     n_load = path.n_load
-    ends = [n_load - 1 + k * 4 * path.nq for k in range(periods + 1)]
+    ends = [int(np.flatnonzero(path.period == k)[-1]) for k in range(periods + 1)]
     U_end = np.array([history["U"][i] for i in ends if i < done])
     if failure is not None:
         cls = gross_sliding(U_end, U0, failure)
@@ -221,6 +248,19 @@ def _load_path(Ft, W, dW, periods, ramp_steps):
     return _LoadPath(Ft_path, c_path, period_path, n_load, dW_used, nq)
 
 
+def _schedule_path(schedule):
+    """The _LoadPath of a LoadSchedule, checked (InputError naming the first bad step)."""
+    Fn, Ft = np.asarray(schedule.Fn, float), np.asarray(schedule.Ft, float)
+    centre, period = np.asarray(schedule.centre, float), np.asarray(schedule.period, int)
+    if not (Fn.shape == Ft.shape == centre.shape == period.shape and Fn.ndim == 1 and Fn.size):
+        raise InputError("schedule: Fn, Ft, centre and period must be 1-D arrays of one length")
+    if not np.all(Fn > 0):
+        raise InputError(f"schedule: Fn = {Fn.min():.6g} N at step {int(np.argmin(Fn))}: must be > 0 at every step")
+    if period[0] != 0 or np.any(np.diff(period) < 0) or np.any(np.diff(period) > 1):
+        raise InputError("schedule: period must start at 0 (loading) and rise by at most 1 per step")
+    return _LoadPath(Ft, centre, period, int(np.count_nonzero(period == 0)), float(schedule.dW_used), 0, Fn)
+
+
 def _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz, gap=None):
     """Step the spring row along the load path (one `_step_kernel` call per step, anchors updated in place; with
     `gap` (g(s) of an axisymmetric profile) the gaps g(s_i - c_n) are computed here and `_step_gap_kernel` steps).
@@ -231,15 +271,20 @@ def _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz, gap=None):
     """
     n_steps = path.Ft.size
     hist = {key: np.full(n_steps, np.nan) for key in
-            ("W", "approach", "U", "Ft", "contact_length", "stick_length")}
+            ("W", "approach", "U", "Ft", "Fn", "contact_length", "stick_length", "dissipation")}
     anchor = np.zeros_like(s)
     v_buf, b_buf, gap_buf = np.empty_like(s), np.empty_like(s), np.empty_like(s)
     U = 0.0
     ratio = mu * E_star / G_star               # Coulomb bound on the deflection: b = ratio * u_z (mm)
     target_n = Fn / (E_star * ds)
     d_prev = d_hertz
+    previous = np.empty_like(s)
     for n in range(n_steps):
         c, Ft = path.centre[n], path.Ft[n]
+        if path.Fn is not None:
+            Fn = path.Fn[n]
+            target_n = Fn / (E_star * ds)
+        previous[:] = anchor
         if gap is None:
             d, U_new, n_contact, n_stick, status = _step_kernel(
                 s, anchor, c, R, target_n, d_prev, ratio, Ft / (G_star * ds), U, v_buf, b_buf, gap_buf)
@@ -254,7 +299,8 @@ def _roll(s, ds, path, R, E_star, G_star, Fn, mu, d_hertz, gap=None):
             return hist, n, (f"no tangential equilibrium at step {n} (period {path.period[n]}): Ft = {Ft:.6g}"
                              f" N exceeds the friction capacity mu Fn = {mu * Fn:.6g} N")
         U, d_prev = U_new, d
-        hist["W"][n], hist["approach"][n], hist["U"][n], hist["Ft"][n] = c, d, U, Ft
+        hist["W"][n], hist["approach"][n], hist["U"][n], hist["Ft"][n], hist["Fn"][n] = c, d, U, Ft, Fn
+        hist["dissipation"][n] = G_star * ds * float(np.dot(U - anchor, anchor - previous))
         hist["contact_length"][n] = ds * n_contact
         hist["stick_length"][n] = ds * n_stick
     return hist, n_steps, None

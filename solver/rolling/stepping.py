@@ -3,13 +3,15 @@
 One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
 
     1. h_n = the undeformed profile shifted to the current sphere centre c_n (seed Eq. 7, any direction);
-    2. normal problem with constant Fn, warm-started from p_{n-1}           -> p_n, approach d_n;
+    2. normal problem with Fn (constant, or the step's Fn of an oscillating load), warm-started from p_{n-1}
+                                                                            -> p_n, approach d_n;
     3. bound g = mu p_n; tangential shift problem with the force F_n and the previous traction
        tau_{n-1} as memory                                                  -> tau_n, dU_n; U_n = U_{n-1} + dU_n;
     4. coupled materials only: repeat 2-3 with the coupling terms until both settle (solver.rolling.coupled).
 
 The path is prescribed: a loading phase (Fn alone, then the tangential force in `ramp_steps` increments,
-then any further force levels) followed by `periods` triangle-wave periods of the centre,
+then any further force levels) followed by `periods` triangle-wave periods of the centre (loads that oscillate
+within each period: solver.rolling.schedule; the frictional work of each step: solver.rolling.energy),
 0 -> +W -> 0 -> -W -> 0, in steps of W/ceil(W/dW) along the rolling direction. Rolling is pure rolling of a
 rigid sphere: only the profile moves, there is no rigid creepage (theory §5.1 note v).
 
@@ -28,6 +30,8 @@ import numpy as np
 from rollcontact.bem.errors import ContactEdgeError, InputError
 from rollcontact.solver.rolling.coupled import solve_coupled_step
 from rollcontact.solver.normal.normcg import NormalParams, NormalResult
+from rollcontact.solver.rolling.energy import frictional_work
+from rollcontact.solver.rolling.schedule import LoadOscillation, check_schedule
 from rollcontact.solver.tangential.shift import TangentialParams, TangentialResult
 
 
@@ -44,6 +48,7 @@ class LoadPath:
     period: np.ndarray       # (n,) int
     reversal: np.ndarray     # (n,) bool
     dW: float = 0.0          # rolling step actually used (mm)
+    normal_forces: np.ndarray | None = None   # (n,) N, Fn per step; None: the run's constant Fn
 
     @property
     def n_steps(self) -> int:
@@ -58,11 +63,15 @@ class LoadPath:
 
 
 def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), amplitude=0.0,
-               max_step=0.2, periods=0) -> LoadPath:
-    """Loading phase then oscillation (theory §6.1).
+               max_step=0.2, periods=0, normal_force=None, oscillation: LoadOscillation | None = None) -> LoadPath:
+    """Loading phase then oscillation (theory §6.1), with loads that may oscillate within each period (§11.2-11.3).
 
     force: final tangential force vector (N) of the ramp; levels: further force vectors (N), each reached
     in `ramp_steps` equal increments (unloading, reversal); amplitude W and max_step dW in mm.
+    normal_force: the mean Fn (N), needed with an active `oscillation` (solver.rolling.schedule.LoadOscillation):
+    then the path carries Fn per step (`normal_forces`), the ramp goes to the schedule's start value, and without
+    rolling (amplitude 0) a period has `oscillation.steps_per_period` steps at rest. Without an active
+    oscillation the path is the constant-load path and `normal_forces` is None (the run's Fn).
     """
     if int(ramp_steps) < 1:
         raise InputError(f"load.ramp_steps = {ramp_steps}: must be an integer >= 1")
@@ -72,6 +81,16 @@ def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), 
         raise InputError(f"motion.dW = {max_step} mm: must be > 0")
     if int(periods) < 0:
         raise InputError(f"motion.periods = {periods}: must be >= 0")
+    oscillating = oscillation is not None and oscillation.active
+    if oscillating:
+        if len(levels):
+            raise InputError("load.levels cannot be combined with oscillating loads (load.ft_amplitude, "
+                             "load.fn_amplitude): give one or the other")
+        if normal_force is None:
+            raise InputError("build_path: an oscillating load needs the mean normal force (normal_force, N)")
+        mean_force = np.asarray(force, dtype=float)
+        normal_start, start = oscillation.loads(normal_force, mean_force, [0], 1)
+        force = start[0]
     force = np.asarray(force, dtype=float)
     forces = [np.zeros(2)]
     if np.any(force != 0):
@@ -85,6 +104,7 @@ def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), 
     forces = [np.array(forces)]
     period = [np.zeros(n_load, dtype=int)]
     reversal = [np.zeros(n_load, dtype=bool)]
+    normal = [np.full(n_load, normal_start[0])] if oscillating else None
     dW = 0.0
     if amplitude > 0 and periods > 0:
         nq = math.ceil(amplitude / max_step - 1e-9)
@@ -98,11 +118,30 @@ def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), 
         rev = (k == nq) | (k == 3 * nq) | (k == 4 * nq)
         periods = int(periods)
         centres.append(np.tile(s[:, None] * e[None, :], (periods, 1)))
-        forces.append(np.repeat(forces[0][-1:], periods * s.size, axis=0))
+        if oscillating:
+            _append_loads(oscillation, normal_force, mean_force, forces, normal, k, periods)
+            rev = rev | oscillation.reversals(k.size)
+        else:
+            forces.append(np.repeat(forces[0][-1:], periods * s.size, axis=0))
         period.append(np.repeat(np.arange(1, periods + 1), s.size))
         reversal.append(np.tile(rev, periods))
+    elif oscillating and periods > 0:   # loads oscillating at rest: steps_per_period steps per period
+        k = np.arange(1, oscillation.steps_per_period + 1)
+        periods = int(periods)
+        centres.append(np.zeros((periods * k.size, 2)))
+        _append_loads(oscillation, normal_force, mean_force, forces, normal, k, periods)
+        period.append(np.repeat(np.arange(1, periods + 1), k.size))
+        reversal.append(np.tile(oscillation.reversals(k.size), periods))
     return LoadPath(np.concatenate(centres), np.concatenate(forces), np.concatenate(period),
-                    np.concatenate(reversal), dW)
+                    np.concatenate(reversal), dW, None if normal is None else np.concatenate(normal))
+
+
+def _append_loads(oscillation, normal_force, mean_force, forces, normal, k, periods):
+    """Append `periods` periods of the schedule at steps k = 1..N (mean loads normal_force, mean_force) to the
+    lists of force and normal-force blocks."""
+    fn, f = oscillation.loads(normal_force, mean_force, k, k.size)
+    forces.append(np.tile(f, (periods, 1)))
+    normal.append(np.tile(fn, periods))
 
 
 @dataclass
@@ -142,6 +181,7 @@ class StepRecord:
     state: StepState
     outer_iterations: int
     wall_time: float
+    dissipation: float = 0.0      # frictional work of the step (N mm), solver.rolling.energy.frictional_work
 
 
 def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepParams(),
@@ -149,13 +189,18 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
     """Step along `path` from `state` (default: unloaded), yielding one StepRecord per step.
 
     op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.rolling.profiles;
-    Fn (N) constant normal force; mu friction coefficient. Raises ContactEdgeError if the contact reaches
-    the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a solver fails.
+    Fn (N) the normal force, constant unless the path carries one per step (`path.normal_forces`, checked here
+    before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
+    carries the frictional work of its step (solver.rolling.energy.frictional_work). Raises ContactEdgeError if
+    the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
+    solver fails.
     """
     if not (Fn > 0):
         raise InputError(f"load.Fn = {Fn} N: must be > 0")
     if not (mu > 0):
         raise InputError(f"load.mu = {mu}: must be > 0")
+    if path.normal_forces is not None:
+        check_schedule(path.normal_forces, path.forces, mu)
     X, Y = op.grid.mesh()
     grid = op.grid
     state = StepState.initial(grid.shape) if state is None else state
@@ -171,13 +216,15 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             move = centre - path.centres[state.step]
             guess = shifted_field(state.pressure, round(move[1] / grid.dy), round(move[0] / grid.dx))
         normal, tangential, outer = solve_coupled_step(
-            op, h, Fn, path.forces[n], state.pressure, state.traction, mu=mu,
+            op, h, Fn if path.normal_forces is None else path.normal_forces[n], path.forces[n], state.pressure,
+            state.traction, mu=mu,
             normal_params=params.normal, tangential_params=params.tangential,
             coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess)
         _check_inside(normal.contact, n, centre)
         state = StepState(n, normal.pressure, tangential.traction,
                           state.rigid_shift + tangential.shift_increment, normal.approach)
-        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0)
+        work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
+        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work)
 
 
 def shifted_field(field, rows, cols):
