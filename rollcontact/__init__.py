@@ -6,6 +6,7 @@ The Python API (the `rollcontact` command is a thin layer over it; see README, "
     load_scene(path=None, overrides=None)   a scene from a TOML file or the embedded default, with overrides
     run(scene, output=None)                  run it (BEM or the 1-D MDR model); a RunResult, HDF5 if output given
     read_run(path)                           a stored run file as the same RunResult
+    restart(path, step=None, overrides=None) continue a stored run (more periods, after a kill), as `run --restart`
     stresses(path, steps=None, depths=None)  add the subsurface stresses of stored steps to a run file
     sweep(scene, vary, output, ...)          a parameter sweep, as `rollcontact sweep`
     limit_search(scene, vary, output, ...)   the shakedown-limit search, as `rollcontact limit-search`
@@ -14,7 +15,7 @@ Subpackages, in the order data flows: `rollcontact.cases` (scenes, runs, results
 `rollcontact.bem` (half-space: materials, grid, influence coefficients, FFT operator) -> `rollcontact.solver`
 (normal and tangential solvers, rolling, MDR model).
 """
-_API = ("load_scene", "run", "read_run", "stresses", "sweep", "limit_search", "RunResult", "Scene",
+_API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "RunResult", "Scene",
         "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted")
 __all__ = ["__version__", *_API]
 

@@ -75,3 +75,13 @@ def test_imports_go_one_way_and_never_into_another_packages_private_module(layer
             if private_names and not (private_module and head == package) and module != package:
                 bad.append(f"{path.relative_to(ROOT)}: imports private {private_names} from {module}")
     assert not bad, "\n".join(bad)
+
+
+def test_every_function_the_readme_names_as_api_is_there():
+    """The README's "Python API" names rollcontact.<name>(...) calls; each must exist (restart was missing)."""
+    import re
+    import rollcontact
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    names = set(re.findall(r"rollcontact\.([a-z_]+)\(", readme))
+    assert {"load_scene", "run", "read_run", "restart", "sweep", "limit_search"} <= names
+    assert all(callable(getattr(rollcontact, n)) for n in names), sorted(n for n in names if not hasattr(rollcontact, n))
