@@ -301,8 +301,8 @@ def test_sliding_sphere_stresses_match_quadrature_of_the_point_load_solution():
     """Hertz contact in full slip (q_x = mu p, mu = 0.3 and 0.5, nu = 0.3; Hamilton 1983's problem) on the default
     grid a/dx = 12: the full tensor at 11 points between z = 0.2 a and a, ahead of, below and behind the contact,
     equals the point-load solution integrated over the continuous distribution within 1 % of p0 (the discretisation
-    error of the grid; measured 3.5e-3 and 3.9e-3 p0). Hamilton's explicit equations are not used: this quadrature
-    is the reference."""
+    error of the grid; measured 3.5e-3 and 3.9e-3 p0). This quadrature is the independent reference; Hamilton's
+    closed form (solver/hamilton.py) is checked against it and against the grid in test_subsurface_sliding.py."""
     a, p0 = 1.0, 1.0
     n = 24
     g = Grid(2 * n + 1, 2 * n + 1, a / 12, a / 12, -n, -n)
@@ -326,7 +326,9 @@ def test_maximum_moves_to_the_surface_as_friction_grows():
     shear and von Mises stresses lie at 0.48 a below the centre; with mu = 0.3 the maximum shear is at the surface
     (Johnson 1985 §7.1: above mu ~ 0.3) while von Mises is still below it (0.43 a, moved towards +x, the direction of
     the traction on the substrate); with mu = 0.5 both are at the surface, behind the centre (x < 0). (Measured on this
-    grid: von Mises reaches the surface between mu = 0.35 and 0.4.)"""
+    grid: von Mises reaches the surface between mu = 0.35 and 0.4. Hamilton's closed form puts the switch at
+    mu = 0.305 (max shear: 0.288), to the trailing edge x = -a, where the surface stress has a square-root cusp that
+    cells of a/12 smooth away: tests/bem/test_subsurface_sliding.py, tests/solver/test_hamilton.py.)"""
     a = 1.0
     n = 18
     g = Grid(2 * n + 1, 2 * n + 1, a / 12, a / 12, -n, -n)
