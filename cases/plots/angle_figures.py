@@ -33,19 +33,24 @@ def study_angles(points) -> list[float]:
     return sorted({round(p.angle, 6) for p in _study(points)})
 
 
-def angle_kappas(points) -> dict:
-    """angle -> fit_kappa (seed Eq. 13) over the angle's shaken-down runs (limit-search probes excluded when
-    the folder has sweep runs, as for the other figures)."""
-    pts = [p for p in _study(points) if not p.probe] or _study(points)
+def kappa_by(points, key) -> dict:
+    """key(point) -> fit_kappa (seed Eq. 13) over the shaken-down runs with w > 0 that share that key."""
     fits = {}
-    for a in study_angles(pts):
-        sel = [p for p in pts if round(p.angle, 6) == a and p.state == "shakedown" and p.u_sd is not None]
+    for g in sorted({key(p) for p in points}):
+        sel = [p for p in points if key(p) == g and p.state == "shakedown" and p.u_sd is not None and p.w > 0]
         if sel:
             try:
-                fits[a] = lim.fit_kappa([p.f_t for p in sel], [p.w for p in sel], [p.u_sd for p in sel])
+                fits[g] = lim.fit_kappa([p.f_t for p in sel], [p.w for p in sel], [p.u_sd for p in sel])
             except ValueError:
                 pass
     return fits
+
+
+def angle_kappas(points) -> dict:
+    """angle -> fit_kappa over the angle's shaken-down runs (limit-search probes excluded when the folder has sweep
+    runs, as for the other figures)."""
+    pts = [p for p in _study(points) if not p.probe] or _study(points)
+    return kappa_by(pts, lambda p: round(p.angle, 6))
 
 
 def kappa_interpolation(fits):

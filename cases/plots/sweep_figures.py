@@ -34,7 +34,7 @@ from rollcontact.cases.results.hdf5 import stored_summary
 from rollcontact.cases.plots.common import (
     FIGSIZE, MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR, PlotError, save_figure, setting_colour, setting_of)
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.cases.plots.angle_figures import angle_figure, angle_fit_text, study_angles
+from rollcontact.cases.plots.angle_figures import angle_figure, angle_fit_text, kappa_by, study_angles
 
 MARKERS = {"parallel": "o", "perpendicular": "^"}
 CURVES = ((lim.KAPPA_PARALLEL, ":", PARALLEL_COLOUR, "κ = 1, W ∥ Ft (Eq. 15)"),
@@ -231,16 +231,7 @@ def fit_scope(points) -> str | None:
 
 def kappa_fits(points) -> dict:
     """fit_kappa (seed Eq. 13) per alignment group over its shaken-down runs with w > 0 (see fit_points)."""
-    points = fit_points(points)
-    fits = {}
-    for g in sorted({p.group for p in points}):
-        sel = [p for p in points if p.group == g and p.state == "shakedown" and p.u_sd is not None and p.w > 0]
-        if sel:
-            try:
-                fits[g] = lim.fit_kappa([p.f_t for p in sel], [p.w for p in sel], [p.u_sd for p in sel])
-            except ValueError:
-                pass
-    return fits
+    return kappa_by(fit_points(points), lambda p: p.group)
 
 
 def format_fit(fit) -> str:
