@@ -77,7 +77,7 @@ def run_mdr(scene: Scene, *, progress=None) -> RunResult:
                    f_t=res.f_t, w=res.w, W=scene.amplitude, dW_used=res.dW_used, springs=res.n_springs,
                    ds=res.ds, steps=n, steps_planned=n, iterations=0, wall_time=wall,
                    U_stat=res.U_stat, u_stat=res.U_stat / res.U0,
-                   dissipation_per_period=dissipation_per_period(h["period"], history))
+                   dissipation_per_period=dissipation_per_period(_planned_periods(h["period"], res), history))
     if (scene.amplitude > 0 or scene.oscillating) and scene.motion.periods > 0:
         summary.update(state=cls.state, periods_to_shakedown=cls.periods_to_shakedown,
                        U_sd=None if cls.u_sd is None else cls.u_sd * res.U0, u_sd=cls.u_sd,
@@ -89,3 +89,12 @@ def run_mdr(scene: Scene, *, progress=None) -> RunResult:
         progress(f"MDR model: {res.n_springs} springs, {n} steps in {wall * 1e3:.1f} ms")
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=s, y=np.zeros(1), history=history,
                      fields={}, field_steps=np.zeros(0, dtype=np.int64), summary=summary, version=version())
+
+
+def _planned_periods(period, res):
+    """The period index of the steps as planned, as far as dissipation_per_period needs it: a run that stopped on
+    gross sliding did not finish its last recorded period, so that period gets one more (missing) step."""
+    period = np.asarray(period)
+    if res.classification.state == "gross_sliding" and period.size:
+        return np.append(period, period[-1])
+    return period

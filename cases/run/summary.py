@@ -36,8 +36,11 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
                    w=scene.amplitude / hertz.a, W=scene.amplitude, dW_used=path.dW, nx=grid.nx, ny=grid.ny,
                    elements=grid.size, steps=n_done, steps_planned=path.n_steps,
                    iterations=int(np.sum(history["iterations"])) if n_done else 0, wall_time=wall)
-    # the static shift at f_t: the end of the ramp, before any further force levels (load.levels)
-    n_ramp = scene.load.ramp_steps if scene.Ft > 0 else 0
+    # the static shift: the end of the ramp (to f_t, or to an oscillating load's starting value), before any further
+    # force levels (load.levels); no ramp when the loading phase carries no tangential force
+    n_load = int(np.count_nonzero(path.period == 0))
+    ramped = scene.Ft > 0 or (scene.oscillating and bool(np.any(np.asarray(path.forces)[:n_load] != 0)))
+    n_ramp = scene.load.ramp_steps if ramped else 0
     if n_done > n_ramp:
         summary.update(U_stat=float(U[n_ramp]), u_stat=float(U[n_ramp] / U0))
     if n_done:

@@ -217,6 +217,9 @@ class Scene(SceneLimits):
         if "motion" in data:
             raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
                              "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
+        if self.shape not in ("sphere", "ellipsoid"):
+            raise SceneError(f"[rolling] with [geometry] shape = {self.shape!r}: rolling with creepage is supported for "
+                             "shape = 'sphere' or 'ellipsoid' (R, or Rx and Ry) only")
         ld = self.load
         for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
             if value is not None:
@@ -273,6 +276,10 @@ class Scene(SceneLimits):
         if ld.levels:
             raise SceneError(f"[load] levels = {ld.levels!r} cannot be combined with oscillating loads "
                              "(ft_amplitude, fn_amplitude): give one or the other")
+        if ld.fn_amplitude > 0 and self.shape not in ("sphere", "ellipsoid"):
+            raise SceneError(f"[load] fn_amplitude = {ld.fn_amplitude!r} with [geometry] shape = {self.shape!r}: an "
+                             "oscillating normal load is supported for shape = 'sphere' or 'ellipsoid' only (the grid "
+                             "is sized by Hertz's a ~ Fn^(1/3) at the largest Fn); set fn_amplitude = 0")
         A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
         use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
         if use >= 1.0:

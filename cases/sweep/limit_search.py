@@ -71,7 +71,9 @@ class _LimitSearch:
             # oscillating loads slide (and are refused, cases.scene.Scene._check_oscillation) from
             # f_t = min(1 + B - A, 1 - B + A) on (A = ft_amplitude, B = fn_amplitude)
             A, B = scene.load.ft_amplitude, scene.load.fn_amplitude
-            self.range = (self.range[0], min(self.range[1], 1.0 + B - A - 0.005, 1.0 - B + A - 0.005))
+            # f_t = min(1 + B - A, 1 - B + A) on, and below A + B - 1 (|ft - A| >= 1 - B at the smallest Fn)
+            self.range = (max(self.range[0], A + B - 1.0 + 0.005),
+                          min(self.range[1], 1.0 + B - A - 0.005, 1.0 - B + A - 0.005))
 
     def run(self, x, periods, extend_from=None) -> tuple[str, Path]:
         """State and run file of the probe at `x` with `periods` periods (extend_from: a shorter run of it)."""

@@ -95,6 +95,8 @@ def test_rolling_scene_refuses_motion_a_tangential_load_and_mdr():
         Scene.from_toml_text("[geometry]\nR = 40.0\n[rolling]\nxi = 0.001\n")
     with pytest.raises(SceneError, match="distance applies to mode = 'transient' only"):
         rolling_scene("distance = 5.0")
+    with pytest.raises(SceneError, match=r"\[rolling\] with \[geometry\] shape = 'cone'"):
+        rolling_scene("xi = 0.001", geometry="shape = \"cone\"\nslope = 6.0")
 
 
 def test_scenes_without_rolling_keep_their_toml():

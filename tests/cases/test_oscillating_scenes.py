@@ -187,3 +187,31 @@ def test_a_large_mean_force_slides_at_the_smallest_normal_force():
         scene({"ft": 0.9, "fn_amplitude": 0.5})
     with pytest.raises(SceneError, match=r"none: lower load\.ft below 1"):
         scene({"ft": 1.0, "fn_amplitude": 0.5, "ft_amplitude": 0.5})
+
+
+def test_u_stat_of_a_mean_zero_oscillation_is_the_shift_at_the_ramp_end(tmp_path):
+    """ft = 0 with an oscillating Ft starting at phase 90 deg: the ramp goes to f_t = +A (4 steps), and U_stat is the
+    shift there, not the zero of step 0 (the BEM summary agrees with the MDR model's, which takes the ramp's end)."""
+    sc = scene({"ft": 0.0, "ft_amplitude": 0.5, "phase": 90.0, "ramp_steps": 4}, {"steps_per_period": 8,
+                                                                                   "periods": 1})
+    res = rollcontact.run(sc)
+    U = res.history["U_x"]
+    assert res.history["F_x"][4] == pytest.approx(0.5 * sc.load.mu * sc.load.Fn, rel=1e-9)
+    assert res.summary["U_stat"] == U[4] and U[4] > 0
+
+
+def test_the_limit_search_range_starts_above_the_lower_sliding_bound(tmp_path):
+    """A + B > 1: f_t below A + B - 1 slides at the smallest Fn and is refused; the search starts above it."""
+    from rollcontact.cases.sweep.limit_search import _LimitSearch
+    base = scene({"ft": 0.5, "ft_amplitude": 0.5, "fn_amplitude": 0.6}, {"w": 0.2})
+    search = _LimitSearch(base, [], {}, "load.ft", 0.01, tmp_path, tmp_path, False)
+    lo, hi = search.range
+    assert lo == pytest.approx(0.1 + 0.005) and hi == pytest.approx(min(1.1, 0.99, 0.895))
+    for f_t in (lo, hi):
+        base.with_overrides([f"load.ft={f_t}"])                   # both ends are accepted scenes
+
+
+def test_an_oscillating_normal_load_needs_a_sphere_or_ellipsoid():
+    with pytest.raises(SceneError, match=r"fn_amplitude = 0\.2 with \[geometry\] shape = 'cone'"):
+        Scene.from_dict({"geometry": {"shape": "cone", "slope": 6.0}, "load": {"fn_amplitude": 0.2},
+                         "motion": {"w": 0, "periods": 2}})
