@@ -35,32 +35,13 @@ import time
 
 import numpy as np
 
-from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.cases import api
-from rollcontact.cases.run.discretise import scene_grid, scene_path
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
+
+from rolling_paper import product_times   # one op.normal / op.tangential, medians (benchmarks/rolling_paper.py)
 
 HERE = Path(__file__).resolve().parent
 AMPLITUDES = (0.3, 0.6, 0.9)
-
-
-def product_times(scene, repeats=50):
-    """(t_normal, t_tangential) in s: medians of one op.normal and one op.tangential on the scene's grid."""
-    grid = scene_grid(scene, scene_path(scene))
-    op = HalfSpaceOperator(grid, scene.material_pair, threads=1)
-    rng = np.random.default_rng(0)
-    p, (tx, ty) = rng.random(grid.shape), rng.random((2,) + grid.shape)
-    out1, out2 = np.empty(grid.shape), np.empty((2,) + grid.shape)
-
-    def med(fn):
-        ts = []
-        for _ in range(repeats):
-            t = time.perf_counter()
-            fn()
-            ts.append(time.perf_counter() - t)
-        return statistics.median(ts)
-
-    return med(lambda: op.normal(p, out=out1)), med(lambda: op.tangential(tx, ty, out=out2))
 
 
 def accuracy(scene, result, x):
@@ -152,9 +133,9 @@ def main(argv=None):
     results = {}
     for _ in range(args.repeats):
         for x, scene in scenes.items():
-            tn0, tt0 = product_times(scene)
+            _, tn0, tt0 = product_times(scene)
             r = api.run(scene)
-            tn1, tt1 = product_times(scene)
+            _, tn1, tt1 = product_times(scene)
             h = r.history
             steady = h["period"] > 0
             per_period = float(np.sum(h["wall_time"][steady]) / args.periods)
