@@ -177,7 +177,8 @@ class SubsurfaceStresses:
 
     Parameters: grid (`Grid`), nu (the substrate's Poisson ratio), threads (FFTW threads), planner (FFTW flag;
     plans are measured once per size and machine and kept as wisdom, like `HalfSpaceOperator`'s).
-    Use `set_tractions(p, tau_x, tau_y)` (MPa, shape (ny, nx)), then `layer(z)` for each depth.
+    Use `set_tractions(p, tau_x, tau_y)` (MPa, shape (ny, nx)), then `layer(z)` for each depth. The kernels of the
+    last depth are kept: for several steps, loop over the depths outside and the steps inside.
     Memory: the size of 48 padded real arrays (15 kernels and their spectra, 3 tractions and their spectra, 6 output
     spectra and fields): 100 MB for a 256 x 256 grid (padded 512 x 512), whatever the number of depths.
     """
@@ -206,6 +207,7 @@ class SubsurfaceStresses:
         self._kernels[...] = 0.0
         self._fields[...] = 0.0
         self._have_tractions = False
+        self._kernel_z = None          # the depth whose kernel spectra are in _kernel_spec
         self.scale = 1.0 / (py * px)   # the inverse transform is unnormalised
 
     def set_tractions(self, pressure, tau_x, tau_y):
@@ -229,8 +231,10 @@ class SubsurfaceStresses:
         if not (z >= 0.0 and math.isfinite(z)):
             raise InputError(f"depth z = {z!r} mm: must be finite and >= 0 (measured into the substrate)")
         g = self.grid
-        _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, float(z), self.nu, self._kernels)
-        self._fft_kernels.execute()
+        if self._kernel_z != float(z):     # the kernels depend on z alone: kept for the next tractions at this depth
+            _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, float(z), self.nu, self._kernels)
+            self._fft_kernels.execute()
+            self._kernel_z = float(z)
         _combine(self._kernel_spec, self._field_spec, ROWS, self._out_spec)
         self._ifft.execute()
         ny, nx = g.shape

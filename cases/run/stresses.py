@@ -122,7 +122,7 @@ def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 
 
 
 def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
-    """Create /subsurface in `dst` and fill it step by step, depth by depth (tractions read from `src`)."""
+    """Create /subsurface in `dst` and fill it depth by depth, step by step (tractions read from `src`)."""
     group = dst.create_group("subsurface")
     group.attrs["nu"] = nu
     group.attrs["depths"] = "default" if default else "given"
@@ -139,14 +139,12 @@ def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
     op = SubsurfaceStresses(grid, nu, threads=threads)
     layer = np.empty((6, ny, nx))
     seconds = 0.0
-    for i, step in enumerate(steps):
-        k = stored.index(step)
-        p, tx, ty = (src[f"fields/{n}"][k] for n in ("p", "tau_x", "tau_y"))
-        t0 = time.perf_counter()
-        op.set_tractions(p, tx, ty)
-        seconds += time.perf_counter() - t0
-        for j, depth in enumerate(z):
+    for j, depth in enumerate(z):        # depths outside: each depth's kernels are built once for all the steps
+        for i, step in enumerate(steps):
+            k = stored.index(step)
+            p, tx, ty = (src[f"fields/{n}"][k] for n in ("p", "tau_x", "tau_y"))
             t0 = time.perf_counter()
+            op.set_tractions(p, tx, ty)
             op.layer(float(depth), out=layer)
             derived = invariants(layer)
             seconds += time.perf_counter() - t0
@@ -155,8 +153,8 @@ def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
             for name, values in derived.items():
                 out[name][i, j] = values
         if progress:
-            progress(f"subsurface stresses: step {step} ({i + 1}/{len(steps)}), {len(z)} depths, max von Mises "
-                     f"{max(out['von_mises'][i, j].max() for j in range(len(z))):.4g} MPa")
+            progress(f"subsurface stresses: depth {j + 1}/{len(z)} (z = {float(depth):.4g} mm), {len(steps)} "
+                     f"step(s), max von Mises {out['von_mises'][:, j].max():.4g} MPa")
     return seconds
 
 

@@ -351,3 +351,20 @@ def test_maximum_moves_to_the_surface_as_friction_grows():
     assert m3["tresca"][1] == 0.0 and 0.3 * a < m3["von_mises"][1] < 0.48 * a and m3["von_mises"][2] > 0
     assert m5["tresca"][1] == 0.0 and m5["von_mises"][1] == 0.0 and m5["von_mises"][2] < 0
     assert m5["von_mises"][0] > m3["von_mises"][0] > m0["von_mises"][0]
+
+
+def test_kept_kernels_give_the_same_layer_as_fresh_ones():
+    """The kernels of the last depth are kept for the next tractions (stresses of several steps, depth by depth):
+    the layer equals that of a fresh operator bit for bit, and a new depth replaces them."""
+    g = Grid(7, 5, 0.3, 0.2, -3, -2)
+    rng = np.random.default_rng(3)
+    first, second = rng.random((3,) + g.shape), rng.random((3,) + g.shape)
+    op = SubsurfaceStresses(g, NU)
+    op.set_tractions(*first)
+    op.layer(0.4)
+    op.set_tractions(*second)
+    kept = op.layer(0.4)
+    fresh = SubsurfaceStresses(g, NU)
+    fresh.set_tractions(*second)
+    assert np.array_equal(kept, fresh.layer(0.4))
+    assert np.array_equal(op.layer(0.7), fresh.layer(0.7))
