@@ -19,8 +19,9 @@ cache, FFTW wisdom), --repeats runs round robin; reported as medians:
   4 mu Fn U0 [6/5 - x - x(1-x)^(2/3) - (6/5)(1-x)^(5/3)]; the paper's nu2 = 0.5 makes Mindlin's closed form a few
   0.1 % off in U (pitfall P10), more in the loop area (docs/oscillating_loads.md).
 
---accuracy instead: (1) the Mindlin-Deresiewicz cycle (2 periods of 24 steps, the second compared) at
-dx = 0.4 / 0.2 / 0.1 mm (a/12, a/24, a/48) for the paper's materials and for two identical bodies with nu = 0 and
+--accuracy instead: (1) the Mindlin-Deresiewicz cycle (2 periods of 24 steps, the second compared) on the
+scene's default grid for the amplitude (grid.dx left out: 4 elements across the slip annulus, at least a/12,
+cases.scene.limits) and at dx = 0.4 / 0.2 / 0.1 mm (a/12, a/24, a/48) for the paper's materials and for two identical bodies with nu = 0 and
 the same E* (where the closed form is exact), the loop error max |U - U_MD| / U(F*) and the frictional work of the
 cycle against the closed form; (2) four histories of varying Fn and Ft without rolling on the default grid (a/12),
 the 3-D U against the 1-D MDR model with per-spring memory (max |U_3D - U_MDR| / max |U_MDR|) and the work per
@@ -58,6 +59,8 @@ def accuracy(scene, result, x):
     return loop, result.summary["dissipation_per_period"] / cm.cycle_dissipation(x) - 1.0
 
 
+PAPER = {"materials.E1": 206e3, "materials.nu1": 0.3, "materials.E2": 4.35, "materials.nu2": 0.5, "geometry.R": 40.0,
+         "load.Fn": 21.19, "load.mu": 0.93}   # the paper scene's keys but its grid (Table 1, cases/paper_parallel.toml)
 NU0 = {"materials.E1": 11.5997, "materials.nu1": 0.0, "materials.E2": 11.5997, "materials.nu2": 0.0}
 HISTORIES = {"proportional (Ft = 0.3 mu Fn(t), Fn 0.5-1.5 Fn)":
              {"load.ft": 0.3, "load.ft_amplitude": 0.15, "load.fn_amplitude": 0.5, "load.phase": -90.0},
@@ -71,13 +74,19 @@ def accuracy_tables():
     """The --accuracy tables (see the module docstring) as lists of dicts, printed as they come."""
     md, hist = [], []
     base = {"motion.w": 0, "motion.periods": 2, "load.ft": 0, "output.fields": "none"}
-    for dx in (0.4, 0.2, 0.1):
+    for dx in ("default", 0.4, 0.2, 0.1):
         for name, mats in (("nu = 0", NU0), ("paper", {})):
             for x in AMPLITUDES:
-                scene = api.load_scene(overrides={**base, **mats, "grid.dx": dx, "load.ft_amplitude": x})
+                over = {**base, **mats, "load.ft_amplitude": x}
+                if dx == "default":   # the paper scene without grid.dx: cases.scene.limits' default for the amplitude
+                    scene = rollcontact_scene({**PAPER, **over})
+                else:
+                    scene = api.load_scene(overrides={**over, "grid.dx": dx})
                 loop, work = accuracy(scene, api.run(scene), x)
-                md.append(dict(materials=name, dx=dx, x=x, loop_error=loop, dissipation_error=work))
-                print(f"MD {name:6s} dx = {dx}: x = {x}: loop {100 * loop:.3f} %, work {100 * work:+.3f} %", flush=True)
+                md.append(dict(materials=name, dx=dx if dx != "default" else scene.grid.dx, default=dx == "default",
+                               x=x, loop_error=loop, dissipation_error=work))
+                print(f"MD {name:6s} dx = {dx} ({scene.grid.dx} mm): x = {x}: loop {100 * loop:.3f} %, work "
+                      f"{100 * work:+.3f} %", flush=True)
     plain = {"geometry.R": 40.0, "motion.periods": 2, "output.fields": "none"}
     for w, angle in ((0.0, 90.0), (0.23, 0.0), (0.23, 90.0)):
         for name, mats in (("nu = 0", NU0), ("paper", {})):

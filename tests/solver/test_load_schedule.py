@@ -119,8 +119,9 @@ def test_mindlin_deresiewicz_dissipation_per_cycle_on_the_papers_grid(ops, x):
     # Energy dissipated per closed cycle = 4 mu Fn U0 [6/5 - x - x (1-x)^(2/3) - (6/5)(1-x)^(5/3)] (theory §11.2),
     # exact for nu = 0. The sum of the frictional work over the second period (end-of-step traction times slip,
     # solver.rolling.energy) within 1 % on the paper's grid (dx = 0.2 mm = a/24): measured -0.84 / -0.13 / -0.06 %.
-    # On the default grid a/12 the slip annulus of x = 0.3 is 0.11 a = 1.3 elements wide and the work is 4.4 %
-    # low (-1.4 % at 0.6, -0.16 % at 0.9), so the check needs a/24; at a/48 all three are within 0.03 %. With the
+    # On a/12 the slip annulus of x = 0.3 is 0.11 a = 1.3 elements wide and the work is 4.4 % low (-1.4 % at 0.6,
+    # -0.16 % at 0.9), so the check needs a/24, and a scene's default grid resolves the annulus (tests/cases/
+    # test_oscillating_scenes.py); at a/48 all three are within 0.03 %. With the
     # paper's materials (nu2 = 0.5) the work converges to 1.4-1.7 % below the closed form (a/48), which is exact
     # only for nu = 0 (P10): the loop's width is a difference of shifts, so their 0.3 % error grows there
     # (docs/oscillating_loads.md).
