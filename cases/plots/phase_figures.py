@@ -20,6 +20,7 @@ import h5py
 import numpy as np
 import matplotlib.pyplot as plt
 
+from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.cases.plots.common import PARALLEL_COLOUR, PERPENDICULAR_COLOUR, save_figure
 from rollcontact.cases.results.hdf5 import stored_summary
 from rollcontact.cases.scene.scene import Scene
@@ -100,7 +101,7 @@ def phase_figure(points, title):
         mine = [p for p in points if p.angle == angle]
         for p in mine:
             y = getattr(p, key)
-            if p.state == "shakedown" and p.u_sd is not None:
+            if p.state in SETTLED_STATES and p.u_sd is not None:
                 sc = ax.scatter(p.phase, y, c=[p.u_sd], cmap="viridis", norm=norm, s=90, edgecolors="k")
                 ax.annotate(f"{p.u_sd:.3f}", (p.phase, y), xytext=(0, 8), textcoords="offset points",
                             ha="center", fontsize=7)
@@ -188,7 +189,7 @@ def phase_limits_figure(rows, title, reference=None):
 
 
 def phase_table(points) -> list[str]:
-    """Markdown rows: per setting and amplitude, the state (s shakedown, R ratcheting, ? otherwise) and the work of
+    """Markdown rows: per setting and amplitude, the state (s shakedown, c cyclic slip, R ratcheting, ? otherwise) and the work of
     the last period / (mu Fn U0) at each phase."""
     key = _amplitude_key(points)
     phases = sorted({p.phase for p in points})
@@ -203,7 +204,7 @@ def phase_table(points) -> list[str]:
                     cells.append("")
                     continue
                 p = hit[0]
-                mark = {"shakedown": "s", "ratcheting": "R"}.get(p.state, "?")
+                mark = {"shakedown": "s", "cyclic_slip": "c", "ratcheting": "R"}.get(p.state, "?")
                 cells.append(f"{mark} {p.work:.3g}" if p.work is not None else mark)
             lines.append(f"| {_setting(angle)[0]} | {amp:g} | " + " | ".join(cells) + " |")
     return lines
@@ -216,7 +217,8 @@ def plot_phase(folder: Path, points_files, out_dir, overwrite=False, out=print) 
     paths = []
     stem = folder.resolve().name
     if points and varies_phase(points):
-        out("state (s shakedown, R ratcheting) and frictional work of the last period / (mu Fn U0) by phase:")
+        out("state (s shakedown, c cyclic slip: U settled but slipping every period, R ratcheting) and frictional "
+            "work of the last period / (mu Fn U0) by phase:")
         for line in phase_table(points):
             out(line)
         paths += save_figure(phase_figure(points, stem), out_dir, f"{stem}_phase", overwrite)

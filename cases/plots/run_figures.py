@@ -18,6 +18,7 @@ from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
+from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.solver.mdr import limits as lim
 
 from rollcontact.cases.plots.common import (
@@ -50,7 +51,7 @@ def history_figure(views: list[RunView]):
             ax.axhline(v.u_stat, color="k", ls=(0, (4, 3)), lw=0.8)
             ax.annotate(f"$u_{{stat}}$ = {v.u_stat:.3f}", (t[-1], v.u_stat), xytext=(-2, -11), ha="right",
                         textcoords="offset points", fontsize=8)
-        if v.state == "shakedown" and v.u_sd is not None:
+        if v.state in SETTLED_STATES and v.u_sd is not None:
             ax.plot(t[-1], v.u_sd, "o", color=v.colour, ms=6)
             ax.annotate(f"$u_{{sd}}$ = {v.u_sd:.3f}", (t[-1], v.u_sd), xytext=(-8, dy), ha="right",
                         textcoords="offset points", fontsize=9, color=v.colour)
@@ -171,7 +172,7 @@ def _map_panels(axes, view, step, lims, colorbars=True, fig=None, extent=None):
     if colorbars and fig is not None:
         for k, (ax, im) in enumerate(zip(axes, ims)):
             cb = fig.colorbar(im, ax=ax, shrink=0.85)
-            if k == 3 and view.state == "shakedown" and view.u_sd is not None:
+            if k == 3 and view.state in SETTLED_STATES and view.u_sd is not None:
                 cb.ax.axhline(view.u_sd, color="k", lw=1.5)
                 cb.ax.text(1.05, view.u_sd, " $u_{sd}$", transform=cb.ax.get_yaxis_transform(), fontsize=8,
                            va="center")
@@ -245,7 +246,7 @@ def profiles_figure(views: list[RunView], steps: list[int]):
                                 label=f"$\\mu p_{{min}}/\\mu p_0$ over the last period, {v.label}")
             axes[1, j].plot(s, ux, "-", color=v.colour, lw=1.6, drawstyle="steps-mid",
                             label=f"$u_x/U_0$ (in contact), {v.label}")
-            if v.state == "shakedown" and v.u_sd is not None:
+            if v.state in SETTLED_STATES and v.u_sd is not None:
                 axes[1, j].axhline(v.u_sd, color=v.colour, ls="-.", lw=0.9,
                                    label=f"$u_{{sd}}$ = {v.u_sd:.3f}, {v.label}")
     names = ("along the rolling direction (dashed line in the maps)",

@@ -28,6 +28,7 @@ import numpy as np
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
+from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.solver.mdr import limits as lim
 
 from rollcontact.cases.results.hdf5 import stored_summary
@@ -264,7 +265,7 @@ def usd_figure(points, title):
     fits = kappa_fits(points)
     handles = []
     for g in sorted({p.group for p in points}):
-        sel = [p for p in points if p.group == g and p.state == "shakedown" and p.u_sd is not None]
+        sel = [p for p in points if p.group == g and p.state in SETTLED_STATES and p.u_sd is not None]
         if not sel:
             continue
         for p in sel:
@@ -278,7 +279,7 @@ def usd_figure(points, title):
                 for _, ls, colour, label in CURVES]
     handles += [Line2D([], [], ls="--", color="0.4", lw=0.8, label="$u_{lim} = 1 - w_{lim}^2$ (Eq. 17)")]
     ax.legend(handles=handles, fontsize=8, loc="upper left")
-    n_rat = sum(p.state != "shakedown" for p in points)
+    n_rat = sum(p.state not in SETTLED_STATES for p in points)
     ax.set_xlabel("$f_t = F_t/(\\mu F_n)$")
     ax.set_ylabel("$u_{sd} = U_{sd}/U_0$")
     ax.set_xlim(0, 1)
@@ -299,7 +300,7 @@ def limits_figure(points, limits, title):
     shown = set()
     for p in points:
         base = MDR_COLOUR if p.mdr else setting_colour(p.angle)
-        filled = p.state == "shakedown"
+        filled = p.state in SETTLED_STATES
         lab = f"{p.group}, {'shakedown' if filled else p.state}"
         ax.plot(p.f_t, p.w, _marker(p), color=base, mfc=base if filled or p.state == "undecided" else "w",
                 fillstyle="bottom" if p.state == "undecided" else "full", mew=1.2,

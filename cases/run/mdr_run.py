@@ -16,12 +16,13 @@ import numpy as np
 
 from rollcontact.bem.errors import InputError
 from rollcontact.solver.mdr.simulate import LoadSchedule, simulate_mdr
+from rollcontact.solver.rolling.shakedown import cyclic_slip
 
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import HISTORY_NAMES, RunResult
 from rollcontact.cases.scene.geometry import AXISYMMETRIC
 from rollcontact.cases.run.discretise import scene_path
-from rollcontact.cases.run.summary import dissipation_per_period
+from rollcontact.cases.run.summary import dissipation_per_period, works_per_period
 from rollcontact.cases.scene.scene import Scene
 
 
@@ -73,6 +74,9 @@ def run_mdr(scene: Scene, *, progress=None) -> RunResult:
                    dissipation=h["dissipation"])
     assert set(history) == set(HISTORY_NAMES)
     cls = res.classification
+    if scene.oscillating:          # loads varying within the period may slip to and fro with U settled
+        cls = cyclic_slip(cls, works_per_period(_planned_periods(h["period"], res), history),
+                          scene.load.mu * scene.load.Fn * res.U0)
     summary = dict(fidelity="mdr", a=res.a, d=res.d, p0=1.5 * scene.load.Fn / (math.pi * res.a ** 2), U0=res.U0,
                    f_t=res.f_t, w=res.w, W=scene.amplitude, dW_used=res.dW_used, springs=res.n_springs,
                    ds=res.ds, steps=n, steps_planned=n, iterations=0, wall_time=wall,

@@ -11,7 +11,7 @@ import numpy as np
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.solver.rolling.shakedown import classify
+from rollcontact.solver.rolling.shakedown import SETTLED_STATES, classify, cyclic_slip
 from rollcontact.solver.rolling.stepping import LoadPath
 
 
@@ -54,9 +54,11 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
         ends = [e for e in path.period_ends() if e < n_done]
         if len(ends) >= 2:
             cls = classify(U[ends], U0, tol=scene.solver.shakedown_tol)
+            if scene.oscillating:      # loads varying within the period may slip to and fro with U settled
+                cls = cyclic_slip(cls, works_per_period(path.period, history), scene.load.mu * scene.load.Fn * U0)
             summary.update(state=cls.state, periods_to_shakedown=cls.periods_to_shakedown,
-                           U_sd=float(U[ends[-1]]) if cls.state == "shakedown" else None,
-                           u_sd=cls.u_sd if cls.state == "shakedown" else None,
+                           U_sd=float(U[ends[-1]]) if cls.state in SETTLED_STATES else None,
+                           u_sd=cls.u_sd if cls.state in SETTLED_STATES else None,
                            dU_per_period=float(U[ends[-1]] - U[ends[-2]]), du=cls.du,
                            dU_perp_per_period=float(U_perp[ends[-1]] - U_perp[ends[-2]]))
         else:
@@ -64,16 +66,20 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     return summary
 
 
-def dissipation_per_period(period, history: dict) -> float | None:
-    """Frictional work of the last complete period (N mm): /history/dissipation summed over its steps; None when
-    no period is complete. period: the period index of every planned step (LoadPath.period)."""
+def works_per_period(period, history: dict) -> np.ndarray:
+    """Frictional work of each complete period 1, 2, ... (N mm): /history/dissipation summed over its steps.
+    period: the period index of every planned step (LoadPath.period)."""
     period = np.asarray(period)
     n_done = len(history["step"])
+    dissipation = np.asarray(history["dissipation"])
     complete = [k for k in range(1, int(period.max()) + 1) if np.flatnonzero(period == k)[-1] < n_done]
-    if not complete:
-        return None
-    steps = np.flatnonzero(period == complete[-1])
-    return float(np.sum(np.asarray(history["dissipation"])[steps]))
+    return np.array([float(np.sum(dissipation[np.flatnonzero(period == k)])) for k in complete])
+
+
+def dissipation_per_period(period, history: dict) -> float | None:
+    """Frictional work of the last complete period (N mm); None when no period is complete."""
+    works = works_per_period(period, history)
+    return float(works[-1]) if works.size else None
 
 
 def format_summary(result: RunResult) -> str:
@@ -109,9 +115,11 @@ def format_summary(result: RunResult) -> str:
                  "\ngross sliding: the tangential force reached the friction capacity mu Fn (f_t = Ft/(mu Fn) = "
                  f"{s['f_t']:.4g}), so no static equilibrium exists and the run stopped there; this is a result "
                  "(status complete), the steps before it are written")
-    elif state == "shakedown":
+    elif state in SETTLED_STATES:
         line += (f" after {s['periods_to_shakedown']} period(s); U_sd = {s['U_sd']:.6f} mm, "
                  f"u_sd = {s['u_sd']:.5f} (w = {s['w']:.4g})")
+        if state == "cyclic_slip":
+            line += "; U returns every period, but the contact slips to and fro (frictional work below)"
     elif state in ("ratcheting", "undecided"):
         line += f"; dU per period = {s['dU_per_period']:.3e} mm, du = {s['du']:.3e} (w = {s['w']:.4g})"
     lines.append(line)

@@ -17,8 +17,8 @@ from rollcontact.bem.errors import SceneError
 #: the paper's point but 1.37 % off at f_t = 0.1 (benchmarks/default_resolution.py, benchmarks/README.md).
 RESOLUTION_PER_RADIUS = 12
 
-#: Elements across the slip annulus of a tangential load oscillating without rolling (motion.w = 0), when grid.dx
-#: is left out: the annulus a [1 - (1 - A)^(1/3)] of an amplitude A = load.ft_amplitude (in mu Fn; the reverse-slip
+#: Elements across the slip annulus of a tangential load oscillating at constant Fn without rolling (motion.w = 0,
+#: load.fn_amplitude = 0), when grid.dx is left out: the annulus a [1 - (1 - A)^(1/3)] of an amplitude A = load.ft_amplitude (in mu Fn; the reverse-slip
 #: annulus of a swing of 2 A, Cattaneo-Mindlin, theory §11.2) spans at least this many elements, so that the work
 #: dissipated per cycle is within 1 % of Mindlin-Deresiewicz's (at a/12 the annulus of A = 0.3 is 1.3 elements
 #: and the work 4.4 % low; with 4 elements and more, a scan of a/dx = 24-42 at A = 0.3 stayed within 0.5 %).
@@ -65,10 +65,10 @@ class SceneLimits:
 
     def default_elements_per_radius(self) -> float:
         """Elements per (smaller) Hertz semi-axis of the default grid.dx: RESOLUTION_PER_RADIUS, or for a tangential
-        load oscillating without rolling RESOLUTION_PER_ANNULUS across its slip annulus, up to
-        MAX_RESOLUTION_PER_RADIUS."""
+        load oscillating at constant Fn without rolling (the Mindlin-Deresiewicz setting) RESOLUTION_PER_ANNULUS
+        across its slip annulus, up to MAX_RESOLUTION_PER_RADIUS."""
         amplitude = self.load.ft_amplitude
-        if self.amplitude > 0 or not amplitude > 0:
+        if self.amplitude > 0 or not amplitude > 0 or self.load.fn_amplitude > 0:
             return RESOLUTION_PER_RADIUS
         annulus = 1.0 - (1.0 - min(amplitude, 1.0)) ** (1.0 / 3.0)     # in contact radii
         return min(max(RESOLUTION_PER_RADIUS, RESOLUTION_PER_ANNULUS / annulus), MAX_RESOLUTION_PER_RADIUS)

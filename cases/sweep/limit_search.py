@@ -53,8 +53,8 @@ MAX_PERIODS_FACTOR = 16         # an undecided probe is continued up to 16x the 
 
 
 def _side(state: str) -> int:
-    """-1 below the limit (shakedown/static), +1 above (ratcheting/gross sliding), 0 undecided."""
-    return {"shakedown": -1, "static": -1, "ratcheting": 1, "gross_sliding": 1}.get(state, 0)
+    """-1 below the limit (shakedown/cyclic slip/static: U settles), +1 above (ratcheting/gross sliding), 0 undecided."""
+    return {"shakedown": -1, "cyclic_slip": -1, "static": -1, "ratcheting": 1, "gross_sliding": 1}.get(state, 0)
 
 
 class _LimitSearch:

@@ -18,6 +18,9 @@ Criteria (tolerances are parameters of `classify`):
                   (typically a slow decay near the shakedown limit, pitfall P12), or too few periods to
                   judge.  The message says so, and, for a geometric decay, estimates how many more periods
                   would bring the increment below tol.
+* 'cyclic_slip' : by `cyclic_slip`, for a run whose loads vary within the period: 'shakedown' by U, but the
+                  frictional work per period has settled (as ratcheting's increments) above WORK_FLOOR mu Fn U0:
+                  the contact slips to and fro every period (fretting, a Mindlin-Deresiewicz cycle) while U returns.
 * 'gross_sliding': never produced here; set by the caller when its solver reports that no equilibrium
                   exists (Ft > mu Fn), see `gross_sliding`.
 A decay slower than settle_rtol per period is reported as ratcheting: over the periods run it is not
@@ -25,14 +28,22 @@ distinguishable from a constant increment.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 
 import numpy as np
 
 from rollcontact.bem.errors import InputError
 
-STATES = ("shakedown", "ratcheting", "undecided", "gross_sliding")
+STATES = ("shakedown", "ratcheting", "undecided", "gross_sliding", "cyclic_slip")
+
+#: States whose U settled (period-end increments below tol): u_sd is their settled U/U0.
+SETTLED_STATES = ("shakedown", "cyclic_slip")
+
+#: Frictional work per period (in mu Fn U0) at or below which a settled run has stopped slipping: the work of a
+#: slip at the solvers' relative tolerance 1e-8. The paper scene's runs that shake down under constant loads decay
+#: through it geometrically (ratio 0.1-0.2 per period: 7e-10 after 8 periods at f_t = 0.3).
+WORK_FLOOR = 1e-8
 
 DEFAULT_TOL = 1e-4
 DEFAULT_SETTLE_RTOL = 0.02
@@ -46,7 +57,7 @@ class Classification:
     state: one of STATES.
     periods_to_shakedown: for 'shakedown', the number of periods after which every increment stayed below
         tol (0 if none reached it); None otherwise.
-    u_sd: for 'shakedown', the final U/U0; None otherwise.
+    u_sd: for 'shakedown' and 'cyclic_slip', the final U/U0; None otherwise.
     du: the last per-period increment du_P = (U_P - U_{P-1})/U0 (signed), for every state (None if no
         period was completed).  For 'ratcheting' it is the settled increment per period.
     dU_per_period: the same increment in mm (du * U0), or None.
@@ -185,3 +196,22 @@ def geometric_decay(increments, *, tol=DEFAULT_TOL, window=4, spread_tol=0.01) -
     last = abs(float(du[-1]))
     more = 0 if last < tol else math.ceil(math.log(tol / last) / math.log(q))
     return Decay(q, spread, True, more, last * q / (1.0 - q))
+
+
+def cyclic_slip(cls: Classification, work_per_period, work_scale: float, *,
+                settle_periods: int = DEFAULT_SETTLE_PERIODS) -> Classification:
+    """`cls` turned 'cyclic_slip' when it is 'shakedown' by U but the frictional work of the completed periods
+    (N mm, one value per period) has settled above WORK_FLOOR * work_scale (N mm: mu Fn U0): changes <=
+    cls.settle_rtol relative over the last settle_periods pairs, the test of ratcheting. A work that still decays
+    (shaking down) or is too short to judge keeps 'shakedown'."""
+    _check_positive("work_scale", work_scale)
+    W = np.asarray(work_per_period, dtype=float).ravel()
+    if cls.state != "shakedown" or W.size < settle_periods + 1 or not W[-1] > WORK_FLOOR * work_scale:
+        return cls
+    tail = W[-(settle_periods + 1):]
+    if not np.all(np.abs(np.diff(tail)) <= cls.settle_rtol * tail[1:]):
+        return cls
+    return replace(cls, state="cyclic_slip",
+                   message=f"cyclic slip: U settled ({cls.message}), but every period still dissipates "
+                           f"{W[-1]:.4g} N mm ({W[-1] / work_scale:.3g} mu Fn U0, settled within "
+                           f"{cls.settle_rtol:g} over {settle_periods} periods)")

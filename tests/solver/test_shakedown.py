@@ -3,7 +3,8 @@ import numpy as np
 import pytest
 
 from rollcontact.bem.errors import InputError
-from rollcontact.solver.rolling.shakedown import STATES, Classification, classify, geometric_decay, gross_sliding
+from rollcontact.solver.rolling.shakedown import (STATES, WORK_FLOOR, Classification, classify, cyclic_slip,
+                                                 geometric_decay, gross_sliding)
 
 U0 = 0.8   # mm
 
@@ -62,7 +63,7 @@ def test_tolerance_sets_the_resolution():
 
 
 def test_gross_sliding_is_an_allowed_state_set_by_the_caller():
-    assert set(STATES) == {"shakedown", "ratcheting", "undecided", "gross_sliding"}
+    assert set(STATES) == {"shakedown", "ratcheting", "undecided", "gross_sliding", "cyclic_slip"}
     c = gross_sliding([], U0, "Ft > mu Fn")
     assert c.state == "gross_sliding" and "Ft > mu Fn" in c.message and c.du is None
     with pytest.raises(InputError, match="state"):
@@ -103,3 +104,26 @@ def test_increments_settling_to_a_constant_or_rising_ratios_are_not_a_geometric_
 
 def test_too_few_increments_give_no_decay():
     assert geometric_decay(0.01 * 0.5 ** np.arange(4)) is None
+
+
+def test_cyclic_slip_is_a_settled_u_with_a_settled_frictional_work():
+    # U back at the same value every period (shakedown by U) while the work per period stays at a constant > 0:
+    # the contact slips to and fro (a Mindlin-Deresiewicz cycle). Measured on the paper scene: the work per period
+    # of a run shaking down under constant loads decays by 0.1-0.2 per period; under an oscillating Ft it settles
+    # (1.666e-05 mu Fn U0 from the 3rd period at ft_amplitude = 0.05 without rolling).
+    settled = classify(_run([0.05, 1e-6, 1e-7, 0.0]), U0)
+    assert settled.state == "shakedown"
+    scale = 10.0                                             # mu Fn U0, N mm
+    work = [0.3, 0.2, 0.2 * (1 + 0.019), 0.2 * (1 + 0.019) ** 2]
+    c = cyclic_slip(settled, work, scale)
+    assert c.state == "cyclic_slip" and c.u_sd == settled.u_sd and "every period" in c.message
+    assert cyclic_slip(settled, [0.3, 0.2, 0.2 * 1.03, 0.2 * 1.03 ** 2], scale).state == "shakedown"  # > 2 %
+    assert cyclic_slip(settled, 0.2 * 0.2 ** np.arange(6), scale).state == "shakedown"               # decaying
+    floor = WORK_FLOOR * scale
+    assert cyclic_slip(settled, [floor] * 4, scale).state == "shakedown"                            # round-off
+    assert cyclic_slip(settled, [2 * floor] * 4, scale).state == "cyclic_slip"
+    assert cyclic_slip(settled, [0.2, 0.2], scale).state == "shakedown"          # two periods: too few to judge
+    ratcheting = classify(_run([0.01] * 5), U0)
+    assert cyclic_slip(ratcheting, [0.2] * 5, scale) is ratcheting
+    with pytest.raises(InputError, match="work_scale"):
+        cyclic_slip(settled, work, 0.0)
