@@ -141,7 +141,8 @@ def _row(run: PlannedRun, result: dict, outdir: Path) -> dict:
     row.update(index=run.index, state=s.get("state") or "", status=result["status"],
                f_t=s.get("f_t"), w=s.get("w"), angle=None, u_sd=s.get("u_sd"), du=s.get("du"),
                U_sd=s.get("U_sd"), dU_per_period=s.get("dU_per_period"), U_perp=s.get("U_perp"),
-               dU_perp_per_period=s.get("dU_perp_per_period"), u_stat=s.get("u_stat"),
+               dU_perp_per_period=s.get("dU_perp_per_period"),
+               dissipation_per_period=s.get("dissipation_per_period"), u_stat=s.get("u_stat"),
                periods_to_shakedown=s.get("periods_to_shakedown"), steps=s.get("steps"),
                iterations=s.get("iterations"), wall_time=s.get("wall_time", result.get("wall_time")),
                file=os.path.relpath(run.path, outdir), error=result.get("error") or "")

@@ -15,14 +15,15 @@ import numpy as np
 from rollcontact.cases.scene.scene import key_unit
 
 SUMMARY_COLUMNS = ("index", "state", "status", "f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period",
-                   "U_perp", "dU_perp_per_period", "u_stat", "periods_to_shakedown", "steps", "iterations", "wall_time",
-                   "file", "error")
+                   "U_perp", "dU_perp_per_period", "dissipation_per_period", "u_stat", "periods_to_shakedown", "steps",
+                   "iterations", "wall_time", "file", "error")
 """Columns of summary.csv / summary.h5 after the varied keys (one column per varied key, named by the key).
 
-index: position in the plan; state: static/shakedown/ratcheting/undecided/gross_sliding ('' if the run
-failed before classifying); status: complete/failed; f_t = Ft/(mu Fn); w = W/a; angle: rolling direction
+index: position in the plan; state: static/shakedown/cyclic_slip/ratcheting/undecided/gross_sliding ('' if the
+run failed before classifying); status: complete/failed; f_t = Ft/(mu Fn); w = W/a; angle: rolling direction
 relative to Ft (deg); u_sd, du, u_stat: normalised by U0 (seed Eq. 9); U_sd, dU_per_period: mm; U_perp,
-dU_perp_per_period: the final shift across Ft and its change over the last period (mm);
+dU_perp_per_period: the final shift across Ft and its change over the last period (mm); dissipation_per_period:
+the frictional work of the last period (N mm);
 periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself; file: run file name
 (relative to OUTDIR); error: message of a failed run."""
 
@@ -34,9 +35,9 @@ CREEP_COLUMNS = ("xi", "eta", "phi", "F_x", "F_y", "M_z", "stick_fraction")
 #: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
 COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "U_perp": "mm", "dU_perp_per_period": "mm",
-                "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm"}
+                "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm"}
 _FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "U_perp", "dU_perp_per_period",
-                  "u_stat", "wall_time")
+                  "dissipation_per_period", "u_stat", "wall_time")
 _INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations")
 
 
