@@ -16,7 +16,7 @@ Solved by Kalker's element Gauss-Seidel (SteadyGS) in the traction differences d
 which the slip is s = w + A dp / dx with the symmetric positive definite A (`_sweep` explains why): the 2x2
 problem per element with the projection on the Coulomb disc, each row from the trailing edge to the leading
 edge, the rows in increasing y; the displacements A dp are kept exact element by element (in-row sums, 1-D FFTs
-to the rows ahead, `bem.rows`, one 2-D product per sweep). Stops when a sweep changes no traction by more than
+to the rows ahead, `bem.rows`, one 2-D product per sweep by the operator's FFTW plans). Stops when a sweep changes no traction by more than
 tol times the largest bound (SteadyParams); the forces are then converged to about 1e-8 relative (measured).
 The pressure is given (the normal problem is solved before; with identical or uncoupled materials it does not
 depend on the traction); the displacement caused by the pressure through Kalker's K is added to the rigid slip.
@@ -30,7 +30,7 @@ from rollcontact.bem.errors import ContactEdgeError, ConvergenceError, InputErro
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.influence import influence_coefficients
 from rollcontact.bem.materials import MaterialPair
-from rollcontact.bem.operator import fft_length
+from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.bem.rows import RowInfluence
 from rollcontact.solver.creep import _sweep
 
@@ -82,10 +82,13 @@ class SteadyResult:
 
 class SteadyRolling:
     """The per-grid set-up of the steady solver: dense Toeplitz tangential kernels of `materials` on `grid`
-    (3 arrays of (2 ny - 1) x (2 nx - 1) floats), built once and shared by every solve on that grid.
-    coupled: include the tangential displacement of the pressure (Kalker's K; default: when K != 0)."""
+    (3 arrays of (2 ny - 1) x (2 nx - 1) floats), built once and shared by every solve on that grid, and the
+    operator whose FFTW plans apply them to a whole field (`operator`: a bem HalfSpaceOperator of the same grid and
+    materials to share, else one of its own). coupled: include the tangential displacement of the pressure
+    (Kalker's K; default: when K != 0)."""
 
-    def __init__(self, grid: Grid, materials: MaterialPair, coupled: bool | None = None):
+    def __init__(self, grid: Grid, materials: MaterialPair, coupled: bool | None = None,
+                 operator: HalfSpaceOperator | None = None):
         self.grid, self.materials = grid, materials
         ny, nx = grid.shape
         X, Y = np.meshgrid(np.arange(-(nx - 1), nx) * grid.dx, np.arange(-(ny - 1), ny) * grid.dy)
@@ -96,26 +99,16 @@ class SteadyRolling:
         self.row_influence = RowInfluence(*self.kernels)
         coupled = materials.K != 0.0 if coupled is None else bool(coupled)
         self._coupling = (k["xz"], k["yz"]) if coupled and materials.K != 0.0 else None
-        self._spectra2d = None  # of the circular embedding, on the first `displacement`
+        if operator is None:
+            operator = HalfSpaceOperator(grid, materials, coupling=False)
+        elif operator.grid != grid or operator.materials != materials:
+            raise InputError("SteadyRolling: the operator must be built on the same grid and materials")
+        self._operator = operator
 
-    def displacement(self, traction):
-        """u1 - u2 (mm), shape (2, ny, nx), from the traction on body 1 (MPa): the Toeplitz product, by FFT on the
-        circular embedding of period (fft_length(2 ny - 1), fft_length(2 nx - 1)) (no wrap onto the grid)."""
-        ny, nx = self.grid.shape
-        if self._spectra2d is None:
-            self._period = (fft_length(2 * ny - 1), fft_length(2 * nx - 1))
-            rows, cols = np.ix_(np.arange(-(ny - 1), ny) % self._period[0], np.arange(-(nx - 1), nx) % self._period[1])
-            self._spectra2d = []
-            for k in self.kernels:
-                circ = np.zeros(self._period)
-                circ[rows, cols] = k
-                self._spectra2d.append(np.fft.rfft2(circ))
-        sxx, sxy, syy = self._spectra2d
-        fx = np.fft.rfft2(traction[0], self._period)
-        fy = np.fft.rfft2(traction[1], self._period)
-        ux = np.fft.irfft2(sxx * fx + sxy * fy, self._period)[:ny, :nx]
-        uy = np.fft.irfft2(sxy * fx + syy * fy, self._period)[:ny, :nx]
-        return np.stack([ux, uy])
+    def displacement(self, traction, out=None):
+        """u1 - u2 (mm), shape (2, ny, nx), from the traction on body 1 (MPa): the Toeplitz product by the
+        operator's FFTs (padded: no wrap onto the grid), into `out` if given."""
+        return self._operator.tangential(traction[0], traction[1], out)
 
     def pressure_displacement(self, pressure):
         """u1 - u2 (mm) caused by the pressure through Kalker's K (zero when K = 0). The coupling coefficients
@@ -202,7 +195,7 @@ def _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega):
                                                lo[j], hi[j], start, omega))
         if j < last:
             problem.row_influence.add(disp, j, dp[:, j] - start, slice(int(j) + 1, last + 1))
-    disp[...] = problem.displacement(dp)
+    problem.displacement(dp, out=disp)
     return change
 
 
