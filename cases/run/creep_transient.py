@@ -51,8 +51,9 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
     grid = creep_grid(scene, travel=n * step)
     op = HalfSpaceOperator(grid, pair, threads=scene.solver.threads,
                            coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
-    world = (f"{grid.nx} x {grid.ny} = {grid.size} elements over x = [{grid.x[0] - grid.dx / 2:.6g}, "
-             f"{grid.x[-1] + grid.dx / 2:.6g}] x y = [{grid.y[0] - grid.dy / 2:.6g}, {grid.y[-1] + grid.dy / 2:.6g}] mm")
+    x0, x1 = grid.x[0] - grid.dx / 2, grid.x[-1] + grid.dx / 2
+    y0, y1 = grid.y[0] - grid.dy / 2, grid.y[-1] + grid.dy / 2
+    world = f"{grid.nx} x {grid.ny} = {grid.size} elements over x = [{x0:.6g}, {x1:.6g}] x y = [{y0:.6g}, {y1:.6g}] mm"
     if progress:
         progress(f"transient rolling on the world-fixed grid {world} (x along the rolling direction "
                  f"{ro.direction} deg), {n} steps of {step:.6g} mm from the {ro.initial or 'rest'} state, coupling "

@@ -79,8 +79,8 @@ def test_world_fixed_transient_reaches_the_steady_state_itself(steady_problem):
 def test_rest_and_cattaneo_starts_reach_the_same_steady_state(world4, steady_problem):
     """The initial state is forgotten: from rest and from the Cattaneo state (the first step's creep slip applied at
     rest) the forces and moment after 4 contact lengths agree within 0.5 % of |F| with each other and with the
-    steady state (measured 0.011 % apart, 0.14 % from the steady Fx: the Cattaneo start is one step ahead), and the Cattaneo state itself is a
-    static shift problem: at rest (centre 0), partial slip, a force of the creep slip's sign."""
+    steady state (measured 0.011 % apart, 0.14 % from the steady Fx: the Cattaneo start is one step ahead), and the
+    Cattaneo state itself is a static shift problem: at rest (centre 0), partial slip, a force opposing the creepage."""
     problem, pressure = steady_problem
     creep = (5e-4, 3e-4, 2e-4)
     steady = solve_steady(problem, pressure, MU, *creep, params=SteadyParams(tol=1e-9))
