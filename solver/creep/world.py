@@ -96,8 +96,8 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
     steps of `step` mm over at least `distance` mm (`rolling_steps`), yielding the initial state (step 0) and each
     step. profile(X, Y, centre) -> h (mm), the undeformed gap about the contact centre (solver.rolling.profiles);
     Fn (N) and mu as in `run_path`; creepages xi, eta and spin phi (1/mm), or forces = (Fx, Fy) N on body 1 in place
-    of xi, eta. Raises InputError for bad arguments or a grid too short for the distance, ContactEdgeError when the
-    contact reaches the grid's edge, GrossSlidingError for |F| >= mu Fn, ConvergenceError if a solver fails."""
+    of xi, eta. Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
+    the initial state, before rolling) or when the contact reaches the grid's edge, GrossSlidingError for |F| >= mu Fn, ConvergenceError if a solver fails."""
     n = rolling_steps(distance, step)
     if initial not in INITIAL_STATES:
         raise InputError(f"[rolling] initial = {initial!r}: allowed values are {list(INITIAL_STATES)}")
@@ -114,9 +114,6 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         if math.hypot(*forces) >= mu * Fn:
             raise GrossSlidingError(f"prescribed |F| = {math.hypot(*forces):.6g} N >= mu Fn = {mu * Fn:.6g} N: full "
                                     "sliding, no rolling state carries it")
-    if n * step > grid.x[-1] - grid.x[0]:
-        raise ContactEdgeError(f"the grid ({grid.x[0]:.4g} to {grid.x[-1]:.4g} mm along the rolling direction) is "
-                               f"shorter than the rolled distance {n * step:.6g} mm ([rolling] distance)")
     X, Y = grid.mesh()
     dA = grid.cell_area
 
@@ -157,6 +154,12 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         normal, tang, outer2, force, moment, creep, wall2, cpu2 = solve(0, 0.0, normal.pressure, tang.traction,
                                                                          "creep")
         outer, wall, cpu = outer + outer2, wall + wall2, cpu + cpu2
+    cols = np.nonzero(normal.contact.any(axis=0))[0]
+    if cols.size and cols[-1] + math.ceil(n * step / grid.dx - 1e-9) >= grid.nx - 1:
+        raise ContactEdgeError(f"the grid (x to {grid.x[-1] + grid.dx / 2:.6g} mm along the rolling direction) is too "
+                               f"short for the contact (x up to {grid.x[cols[-1]] + grid.dx / 2:.6g} mm at rest) rolled "
+                               f"{n * step:.6g} mm ([rolling] distance, {n} steps of {step:.6g} mm) with a free cell "
+                               "ahead")
     shift = np.array(creep) * step
     yield CreepStep(0, 0.0, normal, tang, force, moment, (*creep, phi), shift.copy(), outer, wall, cpu)
     cells = round(step / grid.dx)

@@ -140,8 +140,9 @@ def test_every_step_keeps_coulombs_bound_and_the_force_balance(world4):
 
 
 def test_world_rolling_refuses_bad_arguments(world4):
-    """Step and distance > 0, a known initial state, forces in place of (not with) the creepages, a grid long enough
-    for the distance: each refused before any solve, naming the key."""
+    """Step and distance > 0, a known initial state, forces in place of (not with) the creepages: each refused before
+    any solve, naming the key; a grid too short for the contact rolled over the distance: refused after the initial
+    state, before rolling."""
     go = lambda **kw: next(roll_world(world4, PROFILE, Fn=FN, mu=MU, **{"distance": 1.0, "step": DX, **kw}))
     with pytest.raises(InputError, match=r"\[rolling\] step = 0"):
         go(step=0.0)
@@ -151,5 +152,5 @@ def test_world_rolling_refuses_bad_arguments(world4):
         go(initial="moving")
     with pytest.raises(InputError, match="in place of the creepages"):
         go(xi=1e-3, forces=(1.0, 0.0))
-    with pytest.raises(ContactEdgeError, match=r"shorter than the rolled distance"):
-        go(distance=20 * A)
+    with pytest.raises(ContactEdgeError, match=r"too short for the contact .* rolled [\d.]+ mm \(\[rolling\] distance"):
+        go(distance=8 * A + 2 * DX)      # 86 steps: the contact would reach the last column
