@@ -97,7 +97,8 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
     step. profile(X, Y, centre) -> h (mm), the undeformed gap about the contact centre (solver.rolling.profiles);
     Fn (N) and mu as in `run_path`; creepages xi, eta and spin phi (1/mm), or forces = (Fx, Fy) N on body 1 in place
     of xi, eta. Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
-    the initial state, before rolling) or when the contact reaches the grid's edge, GrossSlidingError for |F| >= mu Fn, ConvergenceError if a solver fails."""
+    the initial state, before rolling) or when the contact reaches the grid's edge, GrossSlidingError for
+    |F| >= mu Fn, ConvergenceError if a solver fails."""
     n = rolling_steps(distance, step)
     if initial not in INITIAL_STATES:
         raise InputError(f"[rolling] initial = {initial!r}: allowed values are {list(INITIAL_STATES)}")
@@ -121,24 +122,25 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         """The substrate's rigid slip relative to body 1 over a step ending at `centre` (mm), for (xi, eta)."""
         return -step * np.stack([creep[0] - phi * Y, creep[1] + phi * (X - centre + SPIN_OFFSET * step)])
 
-    def solve(k, centre, p_prev, tau_prev, load, guess=None):
-        """One step: load = 'rest' (zero force), 'creep' (the creep slip), with the gap about `centre`."""
+    def solve(k, centre, previous, load, guess=None) -> CreepStep:
+        """Step k with the gap about `centre` from the previous step's record (None: unloaded) under load = 'rest'
+        (zero tangential force) or 'creep' (the creep slip of a step, or the prescribed forces); its rigid_shift is
+        that of the step alone (the caller accumulates)."""
         t0, c0 = time.perf_counter(), time.process_time()
         h = profile(X, Y, (centre, 0.0))
-        kw = dict(shift=None, extra_slip=None)
-        F = np.zeros(2)
-        if load == "creep":
-            if forces is None:
-                F, kw = None, dict(shift=(0.0, 0.0), extra_slip=creep_slip(centre, (xi, eta)))
-            else:
-                F = -forces                                   # on the substrate
-                kw["extra_slip"] = creep_slip(centre, (0.0, 0.0)) if phi != 0.0 else None
+        p_prev, tau_prev = ((None, np.zeros((2,) + grid.shape)) if previous is None
+                            else (previous.normal.pressure, previous.tangential.traction))
+        F, kw = np.zeros(2), {}
+        if load == "creep" and forces is None:
+            F, kw = None, dict(shift=(0.0, 0.0), extra_slip=creep_slip(centre, (xi, eta)))
+        elif load == "creep":
+            F = -forces                                                       # on the substrate
+            kw = dict(extra_slip=creep_slip(centre, (0.0, 0.0))) if phi != 0.0 else {}
         normal, tang, outer = solve_coupled_step(
             op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal, tangential_params=params.tangential,
             coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess, **kw)
         _check_inside(normal.contact, k, (centre, 0.0))
         tau = tang.traction
-        force = -np.asarray(tang.force, dtype=float)
         moment = -float(((X - centre) * tau[1] - Y * tau[0]).sum() * dA)
         if load == "rest":
             creep = (0.0, 0.0)
@@ -146,27 +148,27 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
             creep = (xi, eta)
         else:
             creep = (float(tang.shift_increment[0]) / step, float(tang.shift_increment[1]) / step)
-        return normal, tang, outer, force, moment, creep, time.perf_counter() - t0, time.process_time() - c0
+        return CreepStep(k, centre, normal, tang, -np.asarray(tang.force, dtype=float), moment, (*creep, phi),
+                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0)
 
-    shape = grid.shape
-    normal, tang, outer, force, moment, creep, wall, cpu = solve(0, 0.0, None, np.zeros((2,) + shape), "rest")
+    rec = solve(0, 0.0, None, "rest")
     if initial == "cattaneo":
-        normal, tang, outer2, force, moment, creep, wall2, cpu2 = solve(0, 0.0, normal.pressure, tang.traction,
-                                                                         "creep")
-        outer, wall, cpu = outer + outer2, wall + wall2, cpu + cpu2
-    cols = np.nonzero(normal.contact.any(axis=0))[0]
+        rest, rec = rec, solve(0, 0.0, rec, "creep")
+        rec.outer_iterations += rest.outer_iterations
+        rec.wall_time += rest.wall_time
+        rec.cpu_time += rest.cpu_time
+    cols = np.nonzero(rec.normal.contact.any(axis=0))[0]
     if cols.size and cols[-1] + math.ceil(n * step / grid.dx - 1e-9) >= grid.nx - 1:
-        raise ContactEdgeError(f"the grid (x to {grid.x[-1] + grid.dx / 2:.6g} mm along the rolling direction) is too "
-                               f"short for the contact (x up to {grid.x[cols[-1]] + grid.dx / 2:.6g} mm at rest) rolled "
-                               f"{n * step:.6g} mm ([rolling] distance, {n} steps of {step:.6g} mm) with a free cell "
-                               "ahead")
-    shift = np.array(creep) * step
-    yield CreepStep(0, 0.0, normal, tang, force, moment, (*creep, phi), shift.copy(), outer, wall, cpu)
+        end, front = grid.x[-1] + grid.dx / 2, grid.x[cols[-1]] + grid.dx / 2
+        raise ContactEdgeError(f"the grid (x to {end:.6g} mm along the rolling direction) is too short for the "
+                               f"contact (x up to {front:.6g} mm at rest) rolled {n * step:.6g} mm ([rolling] distance,"
+                               f" {n} steps of {step:.6g} mm) with a free cell ahead")
+    shift = rec.rigid_shift.copy()
+    yield rec
     cells = round(step / grid.dx)
     for k in range(1, n + 1):
         centre = k * step
-        guess = shifted_field(normal.pressure, 0, cells)
-        normal, tang, outer, force, moment, creep, wall, cpu = solve(k, centre, normal.pressure, tang.traction,
-                                                                     "creep", guess)
-        shift += np.array(creep) * step
-        yield CreepStep(k, centre, normal, tang, force, moment, (*creep, phi), shift.copy(), outer, wall, cpu)
+        rec = solve(k, centre, rec, "creep", shifted_field(rec.normal.pressure, 0, cells))
+        shift += rec.rigid_shift
+        rec.rigid_shift = shift.copy()
+        yield rec
