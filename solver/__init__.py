@@ -4,8 +4,9 @@
     tangential/  Kalker's transient shift problem with a prescribed force: projected TangCG (theory.md §5)
     rolling/     one step of rolling on the world-fixed grid: shifted gap profiles, the coupled normal +
                  tangential step, the load path and its time stepping, shakedown classification (theory.md §6)
-    creep/       rolling with creepage and spin: the steady state in contact-fixed coordinates, the transient from
-                 rest, prescribed forces, creep curves, Kalker's coefficients (theory.md §7.3, §11.5)
+    creep/       rolling with creepage and spin: the steady state in contact-fixed coordinates, the transient on the
+                 world-fixed grid from rest or Cattaneo's state, prescribed forces, creep curves, Kalker's
+                 coefficients (theory.md §7.3, §11.5)
     mdr/         the 1-D MDR model of oscillating rolling and its closed-form limits (theory.md §8)
     analytic     closed-form references: Hertz, Cattaneo-Mindlin, Hertz ellipse (theory.md §7)
     memo         the product memo the normal and tangential solvers share

@@ -36,7 +36,8 @@ def is_creep_run(data) -> bool:
 
 def plot_creep_run(data, out_dir, stem, overwrite=False):
     """Maps of a steady rolling run (stem_maps.png/.pdf): the traction magnitude |tau|/(mu p_max) with the slip
-    direction, and stick (at the leading edge) and slip regions; x along the rolling direction (arrow)."""
+    direction, and stick (at the leading edge) and slip regions; x along the rolling direction (arrow). A transient
+    run: its last stored step, around the contact."""
     s = data.summary
     if not len(data.field_steps):
         from rollcontact.cases.plots.common import PlotError
@@ -45,6 +46,10 @@ def plot_creep_run(data, out_dir, stem, overwrite=False):
     x, y = np.asarray(data.x), np.asarray(data.y)
     p, tx, ty = data.field("p"), data.field("tau_x"), data.field("tau_y")
     region = data.field("region")
+    if s.get("state") == "transient":     # the last stored step on the long world grid: the contact and 3 cells
+        cols = np.nonzero((p > 0).any(axis=0))[0]
+        keep = slice(max(int(cols[0]) - 3, 0), int(cols[-1]) + 4) if cols.size else slice(None)
+        x, p, tx, ty, region = x[keep], p[:, keep], tx[:, keep], ty[:, keep], region[:, keep]
     scale = mu * float(np.max(p))
     extent = (x[0] - 0.5 * (x[1] - x[0]), x[-1] + 0.5 * (x[1] - x[0]), y[0] - 0.5 * (y[1] - y[0]),
               y[-1] + 0.5 * (y[1] - y[0]))

@@ -24,6 +24,9 @@ HISTORY_UNITS = {
 #: dissipation: the frictional work of the step, -sum tau . s dA with the end-of-step traction tau and the step's
 #: slip s (solver.rolling.energy; theory.md §11.2).
 HISTORY_NAMES = tuple(HISTORY_UNITS)
+#: /history of a [rolling] transient run (cases.run.creep_transient) adds: M_z the moment on the rolling sphere
+#: about the contact centre (Kalker's convention), xi, eta the creepages of the step, cpu_time its process CPU time.
+CREEP_HISTORY_UNITS = {"M_z": "N mm", "xi": "-", "eta": "-", "cpu_time": "s"}
 
 #: /fields: snapshots of shape (stored steps, ny, nx), name -> unit. p, tau: pressure and traction exerted by the
 #: sphere on the substrate; u: displacements of the substrate surface relative to the sphere; slip: of that step.
@@ -56,7 +59,7 @@ SUBSURFACE_UNITS = {
 SUBSURFACE_NAMES = tuple(SUBSURFACE_UNITS)
 
 #: Units of every stored dataset (its 'units' attribute in HDF5).
-UNITS = {**HISTORY_UNITS, **FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
+UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
 
 
 @dataclass

@@ -8,8 +8,8 @@ coupled materials (Kalker's K != 0, [solver] coupling) the two are alternated un
 tangential traction's normal displacement enters the normal problem, the pressure's tangential displacement the
 slip).
 
-What is stored: one step (step 0) in /history and /fields (a transient run: one history row per step and the
-fields of its last step; output.fields = "none" stores no fields), on the contact-fixed grid of the rolling frame.
+What is stored: one step (step 0) in /history and /fields (output.fields = "none" stores no fields), on the
+contact-fixed grid of the rolling frame (a transient run: cases.run.creep_transient, on the world-fixed grid).
 The fields keep the meaning they have in every run file (README, "HDF5 layout"): tau_x, tau_y the traction the
 sphere exerts on the substrate, u_x, u_y the substrate's displacement relative to the sphere, slip_x, slip_y the
 slip of the substrate relative to the sphere over a rolling step of one element (dx, in mm: the steady state
@@ -26,24 +26,24 @@ import time
 
 import numpy as np
 
-from rollcontact.bem.errors import ConvergenceError, InputError, RollcontactError
+from rollcontact.bem.errors import ConvergenceError, RollcontactError
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.solver.creep import (SteadyParams, SteadyRolling, linear_creep_forces, roll_transient,
-                                      solve_for_forces, solve_steady)
+from rollcontact.solver.creep import (SteadyParams, SteadyRolling, linear_creep_forces, solve_for_forces,
+                                      solve_steady)
 from rollcontact.solver.normal import NormalParams, solve_normal
-from rollcontact.solver.tangential import TangentialParams
 
 #: Outer iterations (normal, then steady tangential) allowed for coupled materials.
 MAX_OUTER = 30
 
 
-def creep_grid(scene: Scene) -> Grid:
-    """Contact-fixed grid of the rolling frame over the Hertz contact (10 % allowance for an ellipse) plus the
-    scene's margin (at least one element: the steady upwind difference needs a free cell ahead)."""
+def creep_grid(scene: Scene, travel: float = 0.0) -> Grid:
+    """Grid of the rolling frame (x along [rolling] direction) over the Hertz contact (10 % allowance for an ellipse)
+    plus the scene's margin (at least one element: the steady upwind difference needs a free cell ahead); `travel`
+    (mm) lengthens it ahead for the contact rolled from x = 0 to x = travel (the world-fixed grid of a transient)."""
     (sa, sb), (dx, dy) = scene.semi_axes, scene.spacing
     if scene.radii[0] != scene.radii[1]:
         sa, sb = 1.1 * sa, 1.1 * sb
@@ -51,44 +51,58 @@ def creep_grid(scene: Scene) -> Grid:
     half_x = math.hypot(sa * math.cos(t), sb * math.sin(t))
     half_y = math.hypot(sa * math.sin(t), sb * math.cos(t))
     margin = max(scene.grid.margin, dx, dy)
-    return Grid.covering(-half_x - margin, half_x + margin, -half_y - margin, half_y + margin, dx, dy)
+    return Grid.covering(-half_x - margin, travel + half_x + margin, -half_y - margin, half_y + margin, dx, dy)
+
+
+def rolling_frame_gap(scene: Scene):
+    """The gap h(x, y) = x^2/2Rx + y^2/2Ry (mm) as a function of the rolling frame's coordinates (mm) about the
+    contact centre: the scene's axes turned by [rolling] direction."""
+    t = math.radians(scene.rolling.direction)
+    rx, ry = scene.radii
+    c, s = math.cos(t), math.sin(t)
+
+    def gap(X, Y):
+        x, y = X * c - Y * s, X * s + Y * c
+        return x * x / (2 * rx) + y * y / (2 * ry)
+    return gap
 
 
 def rolling_frame_profile(scene: Scene, grid: Grid) -> np.ndarray:
     """The gap h = x^2/2Rx + y^2/2Ry (mm) at the cells of `grid`, whose x axis is the rolling direction."""
-    t = math.radians(scene.rolling.direction)
-    X, Y = grid.mesh()
-    x = X * math.cos(t) - Y * math.sin(t)
-    y = X * math.sin(t) + Y * math.cos(t)
-    rx, ry = scene.radii
-    return x * x / (2 * rx) + y * y / (2 * ry)
+    return rolling_frame_gap(scene)(*grid.mesh())
 
 
 def run_creep(scene: Scene, *, progress=None) -> RunResult:
-    """Run a [rolling] scene (mode 'steady') and return its result (written by the caller). A solver that does not
-    converge gives status 'failed' with the error; nothing is stored then but the scene."""
+    """Run a [rolling] scene (mode 'steady', or 'transient': cases.run.creep_transient) and return its result
+    (written by the caller). A solver that does not converge gives status 'failed' with the error; nothing is stored
+    then but the scene."""
     t_start = time.perf_counter()
     grid = creep_grid(scene)
-    pair = scene.material_pair
-    op = HalfSpaceOperator(grid, pair, threads=scene.solver.threads,
-                           coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
-    if progress:
-        progress(f"steady rolling: grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = "
-                 f"{grid.dy} mm, contact-fixed, x along the rolling direction {scene.rolling.direction} deg), "
-                 f"coupling {'on' if op.coupled else 'off'}")
-    if scene.rolling.mode == "transient" and op.coupled:
-        raise InputError(f"[rolling] mode = 'transient' with coupled materials (Dundurs beta = {pair.beta:.3g}): "
-                         "not supported (the pressure would have to follow each step); use mode = 'steady', or "
-                         "[solver] coupling = \"off\"")
     try:
         if scene.rolling.mode == "transient":
-            return _transient(scene, grid, op, pair, t_start)
+            from rollcontact.cases.run.creep_transient import run_transient   # it imports this module's helpers
+            return run_transient(scene, t_start, progress=progress)
+        pair = scene.material_pair
+        op = HalfSpaceOperator(grid, pair, threads=scene.solver.threads,
+                               coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+        if progress:
+            progress(f"steady rolling: grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = "
+                     f"{grid.dy} mm, contact-fixed, x along the rolling direction {scene.rolling.direction} deg), "
+                     f"coupling {'on' if op.coupled else 'off'}")
         state = _solve(scene, grid, op, pair)
     except RollcontactError as exc:
         return RunResult(scene_toml=scene.to_toml(), status="failed", error=f"{type(exc).__name__}: {exc}",
                          x=grid.x, y=grid.y, summary={"state": "failed", "wall_time": time.perf_counter() - t_start},
                          version=version())
     return _result(scene, grid, op, state, time.perf_counter() - t_start)
+
+
+def steady_state(scene: Scene):
+    """The steady state of the scene on its contact-fixed grid: (normal, steady, outer, creepages), as `_solve`."""
+    grid = creep_grid(scene)
+    op = HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
+                           coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+    return _solve(scene, grid, op, scene.material_pair)
 
 
 def _solve(scene, grid, op, pair):
@@ -167,51 +181,7 @@ def _result(scene, grid, op, state, wall):
 
 def _stored(scene, fields, step):
     """The snapshot of `step` as stored fields, or none with output.fields = 'none' (any other choice stores the
-    one snapshot a [rolling] run keeps: its state, or the last step of a transient run)."""
+    one snapshot a steady run keeps: its state)."""
     if scene.output.fields == "none":
         return {}, np.zeros(0, dtype=np.int64)
     return {k: np.asarray(v)[None] for k, v in fields.items()}, np.array([step], dtype=np.int64)
-
-
-def _transient(scene, grid, op, pair, t_start):
-    """Roll from rest over [rolling] distance (default 8 a) one element dx per step (solver.creep.roll_transient):
-    one history row per step, the fields of the last step, the summary at the end beside the steady state's."""
-    ro, tol = scene.rolling, scene.solver.tol
-    distance = ro.distance if ro.distance is not None else 8.0 * scene.semi_axes[0]
-    steps = max(1, math.ceil(distance / grid.dx - 1e-9))
-    normal = solve_normal(op, rolling_frame_profile(scene, grid), force=scene.load.Fn,
-                          params=NormalParams(tol=tol, max_iter=scene.solver.max_iter))
-    problem = SteadyRolling(grid, pair, coupled=False)
-    xi, eta, phi = scene.creepages
-    rolled = roll_transient(op, problem, normal.pressure, scene.load.mu, xi, eta, phi, steps=steps,
-                            params=TangentialParams(tol=tol, max_iter=scene.solver.max_iter))
-    steady = solve_steady(problem, normal.pressure, scene.load.mu, xi, eta, phi, initial=rolled.traction,
-                          params=SteadyParams(tol=tol, max_sweeps=max(scene.solver.max_iter, 100)))
-    wall = time.perf_counter() - t_start
-    dA, n = grid.cell_area, steps
-    e_r = (math.cos(math.radians(ro.direction)), math.sin(math.radians(ro.direction)))
-    contact_area = float((normal.pressure > 0).sum() * dA)
-    history = dict(step=np.arange(n), period=np.zeros(n, dtype=np.int64), W_x=rolled.distance * e_r[0],
-                   W_y=rolled.distance * e_r[1], approach=np.full(n, normal.approach), Fn=np.full(n, normal.force),
-                   contact_area=np.full(n, contact_area), stick_area=rolled.stick_cells * dA,
-                   U_x=np.full(n, math.nan), U_y=np.full(n, math.nan), F_x=-rolled.force[:, 0],
-                   F_y=-rolled.force[:, 1], iterations=rolled.products, normal_iterations=np.zeros(n, dtype=np.int64),
-                   tangential_iterations=rolled.products, outer_iterations=np.ones(n, dtype=np.int64),
-                   residual=np.zeros(n), wall_time=np.full(n, wall / n))
-    tau_sub = -rolled.traction
-    u = op.tangential(tau_sub[0], tau_sub[1])
-    fields = {"p": normal.pressure, "u_z": normal.displacement, "tau_x": tau_sub[0], "tau_y": tau_sub[1],
-              "slip_x": np.zeros(grid.shape), "slip_y": np.zeros(grid.shape), "u_x": u[0], "u_y": u[1],
-              "region": rolled.region}
-    a, b = scene.semi_axes
-    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), xi, eta, phi)
-    summary = dict(state="transient", mode=ro.mode, xi=xi, eta=eta, phi=phi, direction=ro.direction,
-                   distance=float(rolled.distance[-1]), F_x=float(rolled.force[-1, 0]), F_y=float(rolled.force[-1, 1]),
-                   M_z=float(rolled.moment[-1]), F_x_steady=steady.force[0], F_y_steady=steady.force[1],
-                   M_z_steady=steady.moment, F_x_linear=linear[0], F_y_linear=linear[1],
-                   mu_Fn=scene.load.mu * normal.force, stick_fraction=float(rolled.stick_cells[-1] / (normal.pressure > 0).sum()),
-                   a=a, b=b, p0=float(np.max(normal.pressure)), nx=grid.nx, ny=grid.ny, elements=grid.size, steps=n,
-                   steps_planned=n, iterations=int(rolled.products.sum()), wall_time=wall, fidelity="bem")
-    fields, stored = _stored(scene, fields, n - 1)
-    return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
-                     fields=fields, field_steps=stored, summary=summary, version=version())

@@ -93,18 +93,28 @@ class Rolling:
     (the sphere) rolls along `direction` over body 2; xi, eta are the longitudinal and lateral rigid slip of body 1
     relative to body 2 per unit rolling distance, phi the spin (1/mm); the forces reported are those on body 1."""
     mode: str = _spec("none", choices=("none", "steady", "transient"),
-                      doc="'steady': the steady state in contact-fixed coordinates; 'transient': rolled from "
-                          "rest over `distance`, one element per step; 'none': no [rolling]")
+                      doc="'steady': the steady state in contact-fixed coordinates; 'transient': stepped on the "
+                          "world-fixed grid from the `initial` state over `distance` in steps of `step`; 'none': "
+                          "no [rolling]")
     xi: float | None = _spec(None, -1, 1, doc="longitudinal creepage (0 unless Fx, Fy are given)")
     eta: float | None = _spec(None, -1, 1, doc="lateral creepage (0 unless Fx, Fy are given)")
     phi: float = _spec(0.0, -INF, INF, lo_open=True, hi_open=True, unit="1/mm", doc="spin creepage")
     direction: float = _spec(0.0, -360, 360, unit="deg", doc="rolling direction from the x axis")
     Fx: float | None = _spec(None, -INF, INF, lo_open=True, hi_open=True, unit="N",
-                             doc="prescribed longitudinal force on the sphere (with Fy; xi, eta solved for)")
+                             doc="prescribed longitudinal force on the sphere (with Fy; xi, eta solved for: steady, "
+                                 "or per step of a transient run)")
     Fy: float | None = _spec(None, -INF, INF, lo_open=True, hi_open=True, unit="N",
                              doc="prescribed lateral force on the sphere (with Fx)")
     distance: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
-                                   doc="transient: distance rolled from rest (default: 4 contact lengths, 8 a)")
+                                   doc="transient: distance rolled from the initial state (default: 4 contact "
+                                       "lengths, 8 a; rounded up to whole steps)")
+    # the upper bound (the contact's half-length a along the rolling direction) is checked by Scene._check_rolling
+    step: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                               doc="transient: rolling step on the world-fixed grid (default: the element size dx; "
+                                   "at most the contact's half-length a along the rolling direction)")
+    initial: str | None = _spec(None, choices=("rest", "cattaneo"),
+                                doc="transient: initial state, 'rest' (Fn alone, zero tangential force; the default) "
+                                    "or 'cattaneo' (then the tangential load of one step at rest)")
 
 
 @dataclass

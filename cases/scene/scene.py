@@ -10,8 +10,8 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
                 ramp_steps increments: unloading and reversal); ft_amplitude, fn_amplitude, phase,
                 cycles_per_period (loads oscillating within each period, docs/oscillating_loads.md)
     [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW; steps_per_period
-    [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction, distance
-                (transient): rolling on with creepage and spin, in
+    [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction; distance, step
+                (mm) and initial ("rest", "cattaneo") of a transient: rolling on with creepage and spin, in
                 place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
@@ -207,6 +207,12 @@ class Scene(SceneLimits):
         ro = self.rolling
         return None if ro.Fx is None else (ro.Fx, ro.Fy)
 
+    @property
+    def rolling_half_length(self) -> float:
+        """Half-length (mm) of the Hertz contact along the [rolling] direction (an ellipse's extent along it)."""
+        (sa, sb), t = self.semi_axes, math.radians(self.rolling.direction)
+        return math.hypot(sa * math.cos(t), sb * math.sin(t))
+
     def _check_rolling(self, data: dict):
         """A [rolling] scene has no [motion], no tangential load and the BEM model."""
         if not self.rolling_on:
@@ -235,11 +241,19 @@ class Scene(SceneLimits):
         if (ro.Fx is None) != (ro.Fy is None):
             raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
                              "give both, or the creepages xi and eta")
-        if ro.Fx is not None and ro.mode != "steady":
-            raise SceneError(f"[rolling] Fx, Fy with mode = {ro.mode!r}: prescribed forces apply to mode = 'steady'")
-        if self.rolling.distance is not None and self.rolling.mode != "transient":
-            raise SceneError(f"[rolling] distance = {self.rolling.distance!r} mm with mode = "
-                             f"{self.rolling.mode!r}: distance applies to mode = 'transient' only")
+        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", "")):
+            if getattr(ro, key) is not None and ro.mode != "transient":
+                raise SceneError(f"[rolling] {key} = {getattr(ro, key)!r}{unit} with mode = {ro.mode!r}: {key} "
+                                 "applies to mode = 'transient' only")
+        if ro.step is not None:
+            half = self.rolling_half_length
+            if ro.step > half:
+                raise SceneError(f"[rolling] step = {ro.step!r} mm: allowed range is 0 < step <= {half:.6g} mm (the "
+                                 "contact's half-length a along the rolling direction; a longer step skips material)")
+            distance = ro.distance if ro.distance is not None else 8.0 * self.semi_axes[0]
+            if distance / ro.step > MAX_STEPS:
+                raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
+                                 f"{MAX_STEPS} steps; use a larger step or a shorter distance")
         if self.solver.fidelity != "bem":
             raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
                              "boundary elements; allowed value is 'bem'")

@@ -5,7 +5,8 @@
     hertz_grid  a Hertzian ellipse on a contact-fixed grid (validation, creep curves)
     curve    creep-force curves with warm starts, the linear theory and Vermeulen-Johnson's saturation
     prescribed  the creepages for prescribed forces Fx, Fy (Broyden from the linear theory)
-    transient  rolling from rest to the steady state, one element per step (Kalker's shift problem)
+    world    transient rolling on the world-fixed grid from an initial state (rest, Cattaneo) towards the steady
+             state: the shifted gap and the nested normal / tangential step of solver.rolling, Kalker's shift problem
     _sweep   its compiled element loops
 
 Units: mm, N, MPa; creepages xi, eta dimensionless, spin phi in 1/mm.
@@ -15,8 +16,8 @@ from rollcontact.solver.creep.hertz_grid import ellipse_grid, hertz_pressure
 from rollcontact.solver.creep.kalker import kalker_coefficients, linear_creep_forces
 from rollcontact.solver.creep.prescribed import PrescribedForceResult, solve_for_forces
 from rollcontact.solver.creep.steady import SteadyParams, SteadyResult, SteadyRolling, solve_steady
-from rollcontact.solver.creep.transient import TransientRolling, roll_transient
+from rollcontact.solver.creep.world import INITIAL_STATES, CreepStep, roll_world, rolling_steps
 
 __all__ = ["CreepCurve", "creep_curve", "saturation_creepage", "vermeulen_johnson", "SteadyParams", "SteadyResult", "SteadyRolling", "ellipse_grid", "hertz_pressure", "kalker_coefficients",
-           "linear_creep_forces", "PrescribedForceResult", "roll_transient", "solve_for_forces", "solve_steady",
-           "TransientRolling"]
+           "linear_creep_forces", "PrescribedForceResult", "roll_world", "rolling_steps", "CreepStep",
+           "INITIAL_STATES", "solve_for_forces", "solve_steady"]

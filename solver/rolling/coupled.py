@@ -25,14 +25,14 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
-                       coupling_tol=1e-8, max_outer=50, pressure_guess=None):
+                       coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
     ----------
     op : bem.HalfSpaceOperator; its `coupled` flag selects the nested loop.
     profile : (ny, nx) undeformed gap h (mm).
-    Fn : normal force (N). F : (Fx, Fy) tangential force on the substrate (N).
+    Fn : normal force (N). F : (Fx, Fy) tangential force on the substrate (N), or None with `shift`.
     previous_pressure : (ny, nx) p' of the previous step (MPa), or None for zero (virgin contact).
     previous_traction : (2, ny, nx) tau' of the previous step (MPa).
     mu : Coulomb friction coefficient (the bound is g = mu p). [Not in the issue's signature: the bound
@@ -43,6 +43,11 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     max_outer : Panagiotopoulos iterations before ConvergenceError.
     pressure_guess : (ny, nx) warm start of the normal solve (MPa), e.g. the previous pressure moved with
         the sphere (`shifted_field`); default the previous pressure. Only the start changes, not the solution.
+    shift : (dUx, dUy) mm, a prescribed rigid-shift increment in place of the force F (solve_tangential's
+        `shift`; the force is then an output), e.g. (0, 0) for rolling with prescribed creepages.
+    extra_slip : (2, ny, nx) mm, a given slip of the step added to the tangential problem's (solve_tangential's
+        `extra_slip`), e.g. the rigid creep slip of a rolling step (solver.creep.world); it is not part of the
+        returned `displacement`.
 
     Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
     with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
@@ -61,9 +66,15 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     initial_p = p_prev if np.any(p_prev) else None
     if pressure_guess is not None and np.any(pressure_guess):
         initial_p = np.asarray(pressure_guess, dtype=float)
+    if (F is None) == (shift is None):
+        raise InputError("solve_coupled_step: give exactly one of F = (Fx, Fy) N or shift = (dUx, dUy) mm")
+    given = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
     if not op.coupled:
         normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
-        tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, params=tangential_params)
+        tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
+                                params=tangential_params)
+        if given is not None:
+            tang = replace(tang, displacement=tang.displacement - given)
         return normal, tang, 1
 
     tau = tau_prev.copy()
@@ -76,7 +87,10 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
                               extra_displacement=op.normal_from_tangential(tau[0], tau[1]),
                               params=normal_params)
         extra = op.tangential_from_pressure(normal.pressure - p_prev)
-        tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, initial=tau, extra_slip=extra,
+        if given is not None:
+            extra = extra + given
+        tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, initial=tau,
+                                extra_slip=extra,
                                 previous_region=None if outer == 1 else tang.region,
                                 params=tangential_params)
         n_products += normal.iterations
@@ -96,4 +110,5 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     raise ConvergenceError("Panagiotopoulos loop (coupled normal/tangential) did not converge",
                            solver="coupled", iterations=max_outer, residual=change, tol=coupling_tol,
                            regime=f"beta = {op.materials.beta:.4g}, mu = {mu}, "
-                                  f"f_t = {float(np.hypot(*np.asarray(F, float))) / (mu * Fn):.4g}")
+                                  + (f"f_t = {float(np.hypot(*np.asarray(F, float))) / (mu * Fn):.4g}"
+                                     if F is not None else f"prescribed shift {tuple(shift)} mm"))
