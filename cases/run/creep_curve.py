@@ -20,7 +20,7 @@ import numpy as np
 
 from rollcontact.bem.errors import InputError, OutputExistsError
 from rollcontact.bem.operator import HalfSpaceOperator
-from rollcontact.cases.run.creep_run import creep_grid, rolling_frame_profile
+from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, kalker_coefficients,
                                       saturation_creepage, vermeulen_johnson)
@@ -55,7 +55,12 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
                          "solver.coupling = \"off\"")
     normal = solve_normal(op, rolling_frame_profile(scene, grid), force=scene.load.Fn,
                           params=NormalParams(tol=scene.solver.tol, max_iter=scene.solver.max_iter))
-    a, b = scene.semi_axes
+    axes = rolling_semi_axes(scene)
+    if axes is None:
+        raise InputError(f"creep-curve: [rolling] direction = {scene.rolling.direction} deg is oblique to the axes of "
+                         "the elongated contact; Kalker's linear theory, which scales the curve, needs the rolling "
+                         "along an axis (direction 0 or 90 deg here); run the scene per creepage (rollcontact run)")
+    a, b = axes
     nu = min(max(pair.nu, 0.0), 0.5)
     index, component, which = VARIED[varied]
     coefficient = kalker_coefficients(a / b, nu)[which]

@@ -26,50 +26,13 @@ import time
 
 import numpy as np
 
-from rollcontact.bem.errors import ConvergenceError, RollcontactError
-from rollcontact.bem.grid import Grid
-from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.bem.errors import RollcontactError
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
+from rollcontact.cases.run.creep_steady import scene_operator, solve_scene
+from rollcontact.cases.run.creep_transient import run_transient
+from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.solver.creep import (SteadyParams, SteadyRolling, linear_creep_forces, solve_for_forces,
-                                      solve_steady)
-from rollcontact.solver.normal import NormalParams, solve_normal
-
-#: Outer iterations (normal, then steady tangential) allowed for coupled materials.
-MAX_OUTER = 30
-
-
-def creep_grid(scene: Scene, travel: float = 0.0) -> Grid:
-    """Grid of the rolling frame (x along [rolling] direction) over the Hertz contact (10 % allowance for an ellipse)
-    plus the scene's margin (at least one element: the steady upwind difference needs a free cell ahead); `travel`
-    (mm) lengthens it ahead for the contact rolled from x = 0 to x = travel (the world-fixed grid of a transient)."""
-    (sa, sb), (dx, dy) = scene.semi_axes, scene.spacing
-    if scene.radii[0] != scene.radii[1]:
-        sa, sb = 1.1 * sa, 1.1 * sb
-    t = math.radians(scene.rolling.direction)
-    half_x = math.hypot(sa * math.cos(t), sb * math.sin(t))
-    half_y = math.hypot(sa * math.sin(t), sb * math.cos(t))
-    margin = max(scene.grid.margin, dx, dy)
-    return Grid.covering(-half_x - margin, travel + half_x + margin, -half_y - margin, half_y + margin, dx, dy)
-
-
-def rolling_frame_gap(scene: Scene):
-    """The gap h(x, y) = x^2/2Rx + y^2/2Ry (mm) as a function of the rolling frame's coordinates (mm) about the
-    contact centre: the scene's axes turned by [rolling] direction."""
-    t = math.radians(scene.rolling.direction)
-    rx, ry = scene.radii
-    c, s = math.cos(t), math.sin(t)
-
-    def gap(X, Y):
-        x, y = X * c - Y * s, X * s + Y * c
-        return x * x / (2 * rx) + y * y / (2 * ry)
-    return gap
-
-
-def rolling_frame_profile(scene: Scene, grid: Grid) -> np.ndarray:
-    """The gap h = x^2/2Rx + y^2/2Ry (mm) at the cells of `grid`, whose x axis is the rolling direction."""
-    return rolling_frame_gap(scene)(*grid.mesh())
 
 
 def run_creep(scene: Scene, *, progress=None) -> RunResult:
@@ -80,69 +43,19 @@ def run_creep(scene: Scene, *, progress=None) -> RunResult:
     grid = creep_grid(scene)
     try:
         if scene.rolling.mode == "transient":
-            from rollcontact.cases.run.creep_transient import run_transient   # it imports this module's helpers
             return run_transient(scene, t_start, progress=progress)
         pair = scene.material_pair
-        op = HalfSpaceOperator(grid, pair, threads=scene.solver.threads,
-                               coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+        op = scene_operator(scene, grid)
         if progress:
             progress(f"steady rolling: grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = "
                      f"{grid.dy} mm, contact-fixed, x along the rolling direction {scene.rolling.direction} deg), "
                      f"coupling {'on' if op.coupled else 'off'}")
-        state = _solve(scene, grid, op, pair)
+        state = solve_scene(scene, grid, op, pair)
     except RollcontactError as exc:
         return RunResult(scene_toml=scene.to_toml(), status="failed", error=f"{type(exc).__name__}: {exc}",
                          x=grid.x, y=grid.y, summary={"state": "failed", "wall_time": time.perf_counter() - t_start},
                          version=version())
     return _result(scene, grid, op, state, time.perf_counter() - t_start)
-
-
-def steady_state(scene: Scene):
-    """The steady state of the scene on its contact-fixed grid: (normal, steady, outer, creepages), as `_solve`."""
-    grid = creep_grid(scene)
-    op = HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
-                           coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
-    return _solve(scene, grid, op, scene.material_pair)
-
-
-def _solve(scene, grid, op, pair):
-    """Normal and steady tangential problems, alternated for coupled materials: (normal, steady, outer, creepages)."""
-    tol = scene.solver.tol
-    profile = rolling_frame_profile(scene, grid)
-    problem = SteadyRolling(grid, pair, coupled=op.coupled)
-    nparams = NormalParams(tol=tol, max_iter=scene.solver.max_iter)
-    sparams = SteadyParams(tol=tol, max_sweeps=max(scene.solver.max_iter, 100))
-    normal = solve_normal(op, profile, force=scene.load.Fn, params=nparams)
-    steady, creep = _tangential(scene, problem, normal.pressure, None, sparams)
-    outer = 1
-    while op.coupled:
-        extra = op.normal_from_tangential(-steady.traction[0], -steady.traction[1])  # substrate convention
-        again = solve_normal(op, profile, force=scene.load.Fn, initial=normal.pressure, extra_displacement=extra,
-                             params=nparams)
-        change = float(np.max(np.abs(again.pressure - normal.pressure)) / np.max(again.pressure))
-        normal, before = again, steady.traction
-        steady, creep = _tangential(scene, problem, normal.pressure, steady.traction, sparams)
-        outer += 1
-        moved = float(np.max(np.abs(steady.traction - before)) / (scene.load.mu * np.max(normal.pressure)))
-        change = max(change, moved)          # neither the pressure nor the traction moves any more
-        if change <= max(tol, 1e-10):
-            break
-        if outer >= MAX_OUTER:
-            raise ConvergenceError("coupled normal / steady rolling iteration did not converge",
-                                   solver="creep_run", iterations=outer, residual=change, tol=max(tol, 1e-10))
-    return normal, steady, outer, creep
-
-
-def _tangential(scene, problem, pressure, initial, params):
-    """The steady state at the scene's creepages, or at the creepages that give its prescribed forces (Fx, Fy on the
-    sphere, solver.creep.solve_for_forces): (SteadyResult, (xi, eta, phi))."""
-    xi, eta, phi = scene.creepages
-    forces = scene.prescribed_forces
-    if forces is None:
-        return solve_steady(problem, pressure, scene.load.mu, xi, eta, phi, initial=initial, params=params), \
-            (xi, eta, phi)
-    found = solve_for_forces(problem, pressure, scene.load.mu, *forces, phi, params=params)
-    return found.steady, (found.xi, found.eta, phi)
 
 
 def _result(scene, grid, op, state, wall):
@@ -167,7 +80,7 @@ def _result(scene, grid, op, state, wall):
     fields, stored = _stored(scene, fields, 0)
     ro, pair = scene.rolling, scene.material_pair
     a, b = scene.semi_axes
-    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), xi, eta, phi)
+    linear = linear_forces(scene, xi, eta, phi)
     summary = dict(state="steady", mode=ro.mode, xi=xi, eta=eta, phi=phi, direction=ro.direction,
                    forces_prescribed=scene.prescribed_forces is not None,
                    F_x=steady.force[0], F_y=steady.force[1], M_z=steady.moment,

@@ -24,12 +24,11 @@ import time
 
 import numpy as np
 
-from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
-from rollcontact.cases.run.creep_run import creep_grid, rolling_frame_gap, steady_state
+from rollcontact.cases.run.creep_steady import scene_operator, steady_state
+from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces, rolling_frame_gap
 from rollcontact.cases.scene.scene import Scene
-from rollcontact.solver.creep import linear_creep_forces
 from rollcontact.solver.creep.world import roll_world, rolling_steps
 from rollcontact.solver.normal import NormalParams
 from rollcontact.solver.rolling import FunctionProfile, StepParams
@@ -46,11 +45,10 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
     ro, pair, tol = scene.rolling, scene.material_pair, scene.solver.tol
     a, b = scene.semi_axes
     step = ro.step if ro.step is not None else scene.spacing[0]
-    distance = ro.distance if ro.distance is not None else 8.0 * a
+    distance = ro.distance if ro.distance is not None else 8.0 * scene.rolling_half_length
     n = rolling_steps(distance, step)
     grid = creep_grid(scene, travel=n * step)
-    op = HalfSpaceOperator(grid, pair, threads=scene.solver.threads,
-                           coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+    op = scene_operator(scene, grid)
     x0, x1 = grid.x[0] - grid.dx / 2, grid.x[-1] + grid.dx / 2
     y0, y1 = grid.y[0] - grid.dy / 2, grid.y[-1] + grid.dy / 2
     world = f"{grid.nx} x {grid.ny} = {grid.size} elements over x = [{x0:.6g}, {x1:.6g}] x y = [{y0:.6g}, {y1:.6g}] mm"
@@ -64,7 +62,7 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
                         coupling_tol=max(tol, 1e-10))
     xi, eta, phi = scene.creepages
     forces = scene.prescribed_forces
-    keep = _stored_steps(scene.output.fields, n, math.ceil(2.0 * a / step - 1e-9))
+    keep = _stored_steps(scene.output.fields, n, math.ceil(2.0 * scene.rolling_half_length / step - 1e-9))
     rows, fields, stored = [], {k: [] for k in FIELDS}, []
     for rec in roll_world(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
                           distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
@@ -77,7 +75,7 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
         last = rec
     wall, cpu = time.perf_counter() - t_start, time.process_time() - c_start
     history = {k: np.asarray([r[k] for r in rows]) for k in rows[0]}
-    linear = linear_creep_forces(a, b, pair.G, min(max(pair.nu, 0.0), 0.5), *last.creepages)
+    linear = linear_forces(scene, *last.creepages)
     contact = last.normal.contact
     summary = dict(state="transient", mode=ro.mode, xi=last.creepages[0], eta=last.creepages[1], phi=phi,
                    direction=ro.direction, forces_prescribed=forces is not None, initial=ro.initial or "rest",

@@ -31,6 +31,18 @@ def scene_path(scene: Scene) -> LoadPath:
                       oscillation=oscillation)
 
 
+def estimated(scene: Scene) -> bool:
+    """True when the scene's contact semi-axes are estimates (an ellipse's, the cylinder's, a file profile's)."""
+    return scene.shape in ("cylinder", "file") or (scene.shape == "ellipsoid" and len(set(scene.radii)) > 1)
+
+
+def contact_extent(scene: Scene) -> tuple[float, float]:
+    """Semi-axes (mm, along x and y) a grid must cover: the scene's, with a 10 % allowance where they are
+    estimates (`estimated`)."""
+    semi_x, semi_y = scene.semi_axes
+    return (1.1 * semi_x, 1.1 * semi_y) if estimated(scene) else (semi_x, semi_y)
+
+
 def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     """Grid just large enough for every contact the path can produce, plus the scene's margin.
 
@@ -41,9 +53,7 @@ def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:
     oscillation (0 and +-W along the rolling direction), so an over-large scene is refused (SceneError,
     bem.grid.MAX_ELEMENTS) before its path is built.
     """
-    semi_x, semi_y = scene.semi_axes
-    if scene.shape in ("cylinder", "file") or (scene.shape == "ellipsoid" and len(set(scene.radii)) > 1):  # estimates: 10 %
-        semi_x, semi_y = 1.1 * semi_x, 1.1 * semi_y
+    semi_x, semi_y = contact_extent(scene)
     if scene.load.fn_amplitude > 0:   # the largest Fn of an oscillating normal load: a ~ Fn^(1/3)
         grow = (1.0 + scene.load.fn_amplitude) ** (1.0 / 3.0)
         semi_x, semi_y = grow * semi_x, grow * semi_y

@@ -223,9 +223,6 @@ class Scene(SceneLimits):
         if "motion" in data:
             raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
                              "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
-        if self.shape not in ("sphere", "ellipsoid"):
-            raise SceneError(f"[rolling] with [geometry] shape = {self.shape!r}: rolling with creepage is supported for "
-                             "shape = 'sphere' or 'ellipsoid' (R, or Rx and Ry) only")
         ld = self.load
         for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
             if value is not None:
@@ -250,7 +247,7 @@ class Scene(SceneLimits):
             if ro.step > half:
                 raise SceneError(f"[rolling] step = {ro.step!r} mm: allowed range is 0 < step <= {half:.6g} mm (the "
                                  "contact's half-length a along the rolling direction; a longer step skips material)")
-            distance = ro.distance if ro.distance is not None else 8.0 * self.semi_axes[0]
+            distance = ro.distance if ro.distance is not None else 8.0 * half
             if distance / ro.step > MAX_STEPS:
                 raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
                                  f"{MAX_STEPS} steps; use a larger step or a shorter distance")

@@ -67,3 +67,13 @@ def test_creep_curve_refuses_a_scene_without_rolling_and_keeps_existing_files(tm
     (tmp_path / "roll_creep_xi.csv").write_text("keep")
     assert main(["creep-curve", str(scene), "--points", "2", "-o", str(tmp_path)]) == 2
     assert (tmp_path / "roll_creep_xi.csv").read_text() == "keep"
+
+
+def test_creep_curve_refuses_an_elongated_contact_rolled_obliquely(tmp_path, capsys):
+    # Kalker's linear theory, which scales the curve, is tabulated for ellipses rolled along an axis
+    scene = tmp_path / "oblique.toml"
+    scene.write_text(SCENE.replace("R = 40.0", "Rx = 40.0\nRy = 80.0").replace('mode = "steady"',
+                                                                                'mode = "steady"\ndirection = 30.0'))
+    assert main(["creep-curve", str(scene), "--points", "2", "-o", str(tmp_path)]) == 2
+    assert "direction = 30.0 deg is oblique" in capsys.readouterr().err
+    assert not list(tmp_path.glob("*.csv"))

@@ -1,0 +1,74 @@
+"""The steady state of a [rolling] scene (solver.creep.steady; theory.md §7.3, §11.5): the normal problem on the
+contact-fixed grid of the rolling frame (NormCG) and the steady tangential problem on the same grid (Kalker's
+Gauss-Seidel in traction differences), alternated for coupled materials (Kalker's K != 0, [solver] coupling) until
+neither the pressure (relative to its maximum) nor the traction (relative to mu p_max) changes by more than the
+solver tolerance: the tangential traction's normal displacement enters the normal problem, the pressure's
+tangential displacement the slip. Used by the steady run (cases.run.creep_run) and beside a transient
+(cases.run.creep_transient). Units: mm, N, MPa.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from rollcontact.bem.errors import ConvergenceError
+from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile
+from rollcontact.cases.scene.scene import Scene
+from rollcontact.solver.creep import SteadyParams, SteadyRolling, solve_for_forces, solve_steady
+from rollcontact.solver.normal import NormalParams, solve_normal
+
+#: Outer iterations (normal, then steady tangential) allowed for coupled materials.
+MAX_OUTER = 30
+
+
+def scene_operator(scene: Scene, grid) -> HalfSpaceOperator:
+    """The scene's half-space operator on `grid` ([solver] threads and coupling)."""
+    return HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
+                             coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+
+
+def steady_state(scene: Scene):
+    """The steady state of the scene on its contact-fixed grid: (normal, steady, outer, creepages), as `solve_scene`."""
+    grid = creep_grid(scene)
+    op = scene_operator(scene, grid)
+    return solve_scene(scene, grid, op, scene.material_pair)
+
+
+def solve_scene(scene, grid, op, pair):
+    """Normal and steady tangential problems, alternated for coupled materials: (normal, steady, outer, creepages)."""
+    tol = scene.solver.tol
+    profile = rolling_frame_profile(scene, grid)
+    problem = SteadyRolling(grid, pair, coupled=op.coupled, operator=op)
+    nparams = NormalParams(tol=tol, max_iter=scene.solver.max_iter)
+    sparams = SteadyParams(tol=tol, max_sweeps=max(scene.solver.max_iter, 100))
+    normal = solve_normal(op, profile, force=scene.load.Fn, params=nparams)
+    steady, creep = _tangential(scene, problem, normal.pressure, None, sparams)
+    outer = 1
+    while op.coupled:
+        extra = op.normal_from_tangential(-steady.traction[0], -steady.traction[1])  # substrate convention
+        again = solve_normal(op, profile, force=scene.load.Fn, initial=normal.pressure, extra_displacement=extra,
+                             params=nparams)
+        change = float(np.max(np.abs(again.pressure - normal.pressure)) / np.max(again.pressure))
+        normal, before = again, steady.traction
+        steady, creep = _tangential(scene, problem, normal.pressure, steady.traction, sparams)
+        outer += 1
+        moved = float(np.max(np.abs(steady.traction - before)) / (scene.load.mu * np.max(normal.pressure)))
+        change = max(change, moved)          # neither the pressure nor the traction moves any more
+        if change <= max(tol, 1e-10):
+            break
+        if outer >= MAX_OUTER:
+            raise ConvergenceError("coupled normal / steady rolling iteration did not converge",
+                                   solver="creep_run", iterations=outer, residual=change, tol=max(tol, 1e-10))
+    return normal, steady, outer, creep
+
+
+def _tangential(scene, problem, pressure, initial, params):
+    """The steady state at the scene's creepages, or at the creepages that give its prescribed forces (Fx, Fy on the
+    sphere, solver.creep.solve_for_forces): (SteadyResult, (xi, eta, phi))."""
+    xi, eta, phi = scene.creepages
+    forces = scene.prescribed_forces
+    if forces is None:
+        return solve_steady(problem, pressure, scene.load.mu, xi, eta, phi, initial=initial, params=params), \
+            (xi, eta, phi)
+    found = solve_for_forces(problem, pressure, scene.load.mu, *forces, phi, params=params)
+    return found.steady, (found.xi, found.eta, phi)
