@@ -70,7 +70,7 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
                                      normal.force)
     creep = np.zeros((len(fractions), 3))
     creep[:, index] = fractions * saturation
-    curve = creep_curve(SteadyRolling(grid, pair, coupled=False), normal.pressure, scene.load.mu, creep,
+    curve = creep_curve(SteadyRolling(grid, pair, coupled=False, operator=op), normal.pressure, scene.load.mu, creep,
                         params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)))
     ratio = -curve.force[:, component] / mu_fn
     rows = [dict(zip(COLUMNS, (creep[k, index], fractions[k], curve.force[k, 0], curve.force[k, 1],
