@@ -53,7 +53,7 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
     status, error, state_label, interrupted = "complete", "", None, None
     last_report = time.perf_counter()
     if stresses is not None:
-        stresses.start(grid.x, grid.y)
+        stresses.start(grid.x, grid.y, scene.normal_reference.a)       # the summary's a (cases.run.summary)
     try:
         if stresses is not None:
             stresses.catch_up(recorder)          # the snapshots a restart inherits

@@ -26,6 +26,8 @@ import signal
 import sys
 import threading
 
+import numpy as np
+
 from rollcontact.bem.errors import InputError, OutputExistsError, RollcontactError
 from rollcontact.bem.wisdom import process_exists
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary, wait_for_replaced, write_run
@@ -104,7 +106,7 @@ def _complete_stresses(stresses, result: RunResult, progress):
     here, or an interrupt (then False is returned), is reported and leaves the run's own results to be written."""
     if not len(result.field_steps):
         return True
-    stresses.start(result.x, result.y)
+    stresses.start(result.x, result.y, result.summary.get("a"))
     try:
         for i, step in enumerate(result.field_steps):
             stresses.ensure(step, *(result.fields[n][i] for n in ("p", "tau_x", "tau_y")))
@@ -159,7 +161,8 @@ def _finish(result: RunResult, out: Path, target: Path, attrs, stresses=None):
                 target.unlink(missing_ok=True)      # this run's checkpoints (the name was free when it started)
             if stresses is not None:
                 stresses.discard()
-                result.subsurface = dict(steps=filled, z=stresses.z, seconds=stresses.seconds,
+                z = stresses.z if stresses.z is not None else np.zeros(0)
+                result.subsurface = dict(steps=filled, z=z, seconds=stresses.seconds,
                                          computed=list(stresses.computed), reused=list(stresses.reused))
         finally:
             wait_for_replaced()

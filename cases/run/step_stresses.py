@@ -43,17 +43,19 @@ def folder_of(run_file) -> Path:
 
 class StepStresses:
     """The stresses of the stored steps of one run of `scene` that writes `target`, at `depths` (mm; None: the default
-    depths of the scene's contact radius, as `rollcontact stresses`). restart: the cases.run.restart.RestartSource the
-    run continues (its stresses are reused); progress: callable(message) or None.
+    depths of the run summary's contact radius, as `rollcontact stresses`). restart: the cases.run.restart.RestartSource
+    the run continues (its stresses are reused); progress: callable(message) or None.
 
-    `start(x, y)` with the run's grid, `catch_up(recorder)` after each recorded step (cases.run.bem_run), `ensure`
-    for any stored step, `fill(h5, steps)` in the final write, then `discard()`. `computed` and `reused` list the
-    steps whose stresses this process computed or found already computed; `seconds` the time computing them."""
+    `start(x, y, a)` with the run's grid and contact radius, `catch_up(recorder)` after each recorded step
+    (cases.run.bem_run), `ensure` for any stored step, `fill(h5, steps)` in the final write, then `discard()`.
+    `computed` and `reused` list the steps whose stresses this process computed or found already computed; `seconds`
+    the time computing them (without writing them, as `add_subsurface` counts)."""
 
     def __init__(self, scene: Scene, target, depths=None, restart=None, progress=None):
+        self.scene = scene
         self.nu = float(scene.materials.nu2)
         self.default = depths is None
-        self.z = run_depths(scene, scene.normal_reference.a, depths)
+        self.z = None if depths is None else run_depths(scene, np.nan, depths)     # given depths checked at once
         self.folder = folder_of(target)
         self.restart = restart
         self.progress = progress
@@ -64,11 +66,14 @@ class StepStresses:
         self._seen = 0              # snapshots of the recorder handled by catch_up
         self._op = self._layer = None
 
-    def start(self, x, y):
-        """The run's grid (cell centres, mm), as stored in /grid/x, /grid/y."""
+    def start(self, x, y, a: float):
+        """The run's grid (cell centres, mm, as stored in /grid/x, /grid/y) and contact radius a (mm, its summary's
+        `a`, which places the default depths)."""
         if self.grid is None:
             self._x, self._y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
             self.grid = grid_of(self._x, self._y)
+        if self.z is None:
+            self.z = run_depths(self.scene, float(a) if a is not None else np.nan)
 
     def catch_up(self, recorder):
         """The stresses of the snapshots `recorder` (cases.run.recorder.StepRecorder) stored since the last call."""
@@ -162,20 +167,22 @@ class StepStresses:
         if self._op is None:
             self._op = SubsurfaceStresses(self.grid, self.nu)
             self._layer = np.empty((6,) + self.grid.shape)
-        t0 = time.perf_counter()
+        start = time.perf_counter()
         worst = 0.0
         self._op.set_tractions(pressure, tau_x, tau_y)
+        computing = time.perf_counter() - start
         with self._step_file(path, step, key) as out:
             for j, depth in enumerate(self.z):
+                t0 = time.perf_counter()
                 values = layer_fields(self._op, float(depth), self._layer)
+                computing += time.perf_counter() - t0
                 for name, layer in values.items():
                     out[name][j] = layer
                 worst = max(worst, float(values["von_mises"].max()))
-        seconds = time.perf_counter() - t0
-        self.seconds += seconds
+        self.seconds += computing
         if self.progress:
             self.progress(f"subsurface stresses of step {step} written ({len(self.z)} depths, max von Mises "
-                          f"{worst:.4g} MPa, {seconds:.2f} s)")
+                          f"{worst:.4g} MPa, {time.perf_counter() - start:.2f} s)")
 
     @contextmanager
     def _step_file(self, path, step, key):
@@ -187,4 +194,5 @@ class StepStresses:
             h5.attrs.update(step=step, nu=self.nu, key=key)
             h5.create_dataset("z", data=self.z).attrs["units"] = "mm"
             yield {name: h5.create_dataset(name, shape=(len(self.z), ny, nx), dtype=np.float64, chunks=(1, ny, nx),
-                                           compression="gzip", compression_opts=GZIP_LEVEL) for name in SUBSURFACE_NAMES}
+                                           compression="gzip", compression_opts=GZIP_LEVEL)
+                   for name in SUBSURFACE_NAMES}

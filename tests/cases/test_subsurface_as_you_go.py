@@ -1,5 +1,5 @@
-"""`run --stresses`: the subsurface stresses of each stored step computed when the step is stored (cases.run.step_stresses),
-kept when the run fails or is killed, not computed again by its restart, and in the end the very /subsurface that
+"""`run --stresses`: the subsurface stresses of each stored step computed when the step is stored
+(cases.run.step_stresses), kept when the run fails or is killed, not computed again by its restart, and in the end the very /subsurface that
 `rollcontact stresses RUN.h5 --all-steps` writes. Real runs of the paper scene on a coarse grid, real files, the
 restart and kill -9 of tests/cases/test_no_result_lost.py. Units mm, MPa."""
 from pathlib import Path
