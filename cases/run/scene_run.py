@@ -152,7 +152,7 @@ def _finish(result: RunResult, out: Path, target: Path, attrs, stresses=None):
     result.attrs.update(attrs or {})
     path = out if result.status == "complete" else target
     filled = []
-    extend = None if stresses is None else (lambda h5: filled.extend(stresses.fill(h5, result.field_steps)))
+    extend = None if stresses is None else (lambda h5: filled.extend(stresses.fill(h5, result.field_steps, result.fields)))
     with _deferred_interrupts():
         try:
             write_run(path, result, result.snapshot_chunks, extend=extend)

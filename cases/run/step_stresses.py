@@ -103,9 +103,14 @@ class StepStresses:
             self.computed.append(step)
         self._done.add(step)
 
-    def fill(self, h5, steps) -> list:
-        """/subsurface in the open run file `h5` for those of `steps` (the stored steps) that have their stresses
-        (every one, unless the run was interrupted); returns them. No group when none has."""
+    def fill(self, h5, steps, fields) -> list:
+        """/subsurface in the open run file `h5` for those of `steps` (the stored steps, their `fields` by name) that
+        have their stresses (every one, unless the run was interrupted); returns them. No group when none has."""
+        for i, step in enumerate(steps):     # an interrupt may come after a step's file is renamed into place
+            if int(step) not in self._done and self.grid is not None and self.z is not None:
+                key = self._key(*(fields[n][i] for n in ("p", "tau_x", "tau_y")))
+                if self._matches(self.folder / f"step_{int(step)}.h5", key):
+                    self._done.add(int(step))
         have = [int(s) for s in steps if int(s) in self._done]
         if not have:
             return have

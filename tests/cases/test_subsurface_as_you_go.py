@@ -143,3 +143,26 @@ def test_the_command_line_refuses_depths_without_stresses_and_stresses_without_a
         else:
             raise AssertionError("accepted")
     assert not (tmp_path / "y.h5").exists()
+
+
+def test_an_interrupted_run_writes_the_stresses_of_every_step_it_said_it_wrote(tmp_path):
+    """Ctrl-C (SIGINT) right after a line 'subsurface stresses of step N written': the run's file (status 'failed')
+    holds the stresses of every step so announced, N included, whenever the interrupt came; the folder is gone."""
+    out = tmp_path / "interrupted.h5"
+    proc = subprocess.Popen([ROLLCONTACT, "run", "-o", str(out), "--set", "grid.dx=0.4", "--set", "motion.dW=0.4",
+                             "--set", "motion.periods=600", "--stresses", "--depths", DEPTHS], cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    announced = []
+    for line in proc.stderr:
+        if line.startswith("subsurface stresses of step"):
+            announced.append(int(line.split()[4]))
+            if len(announced) == 4:
+                break
+    proc.send_signal(signal.SIGINT)
+    proc.communicate(timeout=120)
+    assert proc.returncode == 130
+    with h5py.File(out, "r") as h5:
+        assert h5.attrs["status"] == "failed"
+        computed = [int(s) for s in h5["subsurface/step"][()]]
+        stored = [int(s) for s in h5["fields/step"][()]]
+    assert announced == computed[:4] and set(computed) <= set(stored) and not folder_of(out).exists()
