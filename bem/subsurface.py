@@ -178,12 +178,16 @@ class SubsurfaceStresses:
     Parameters: grid (`Grid`), nu (the substrate's Poisson ratio), threads (FFTW threads), planner (FFTW flag;
     plans are measured once per size and machine and kept as wisdom, like `HalfSpaceOperator`'s).
     Use `set_tractions(p, tau_x, tau_y)` (MPa, shape (ny, nx)), then `layer(z)` for each depth. The kernels of the
-    last depth are kept: for several steps, loop over the depths outside and the steps inside.
+    last depth are kept: for several steps, loop over the depths outside and the steps inside. kept_bytes: the
+    kernel spectra of further depths kept up to that many bytes (15 half-spectra a depth: 2.1 MB on the paper's grid,
+    32 MB at 256 x 256), for tractions that come one step at a time: a kept depth costs its products and inverse FFTs
+    alone (on the paper's grid 30 depths take 0.055 s instead of 0.19 s). The values are the same to the bit.
     Memory: the size of 48 padded real arrays (15 kernels and their spectra, 3 tractions and their spectra, 6 output
-    spectra and fields): 100 MB for a 256 x 256 grid (padded 512 x 512), whatever the number of depths.
+    spectra and fields): 100 MB for a 256 x 256 grid (padded 512 x 512), whatever the number of depths, and kept_bytes.
     """
 
-    def __init__(self, grid: Grid, nu: float, *, threads: int = 1, planner: str = "FFTW_MEASURE"):
+    def __init__(self, grid: Grid, nu: float, *, threads: int = 1, planner: str = "FFTW_MEASURE",
+                 kept_bytes: int = 0):
         if not (-1.0 < nu <= 0.5):
             raise InputError(f"Poisson ratio nu = {nu!r}: allowed range is -1 < nu <= 0.5")
         self.grid, self.nu = grid, float(nu)
@@ -208,6 +212,8 @@ class SubsurfaceStresses:
         self._fields[...] = 0.0
         self._have_tractions = False
         self._kernel_z = None          # the depth whose kernel spectra are in _kernel_spec
+        self._kept = {}                # depth -> its kernel spectra, while they fit in kept_bytes
+        self._kept_bytes = int(kept_bytes)
         self.scale = 1.0 / (py * px)   # the inverse transform is unnormalised
 
     def set_tractions(self, pressure, tau_x, tau_y):
@@ -230,12 +236,17 @@ class SubsurfaceStresses:
             raise InputError("SubsurfaceStresses.layer: call set_tractions(p, tau_x, tau_y) first")
         if not (z >= 0.0 and math.isfinite(z)):
             raise InputError(f"depth z = {z!r} mm: must be finite and >= 0 (measured into the substrate)")
-        g = self.grid
-        if self._kernel_z != float(z):     # the kernels depend on z alone: kept for the next tractions at this depth
-            _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, float(z), self.nu, self._kernels)
-            self._fft_kernels.execute()
-            self._kernel_z = float(z)
-        _combine(self._kernel_spec, self._field_spec, ROWS, self._out_spec)
+        g, z = self.grid, float(z)
+        spectra = self._kept.get(z)
+        if spectra is None:
+            if self._kernel_z != z:        # the kernels depend on z alone: kept for the next tractions at this depth
+                _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, z, self.nu, self._kernels)
+                self._fft_kernels.execute()
+                self._kernel_z = z
+                if (len(self._kept) + 1) * self._kernel_spec.nbytes <= self._kept_bytes:
+                    self._kept[z] = self._kernel_spec.copy()
+            spectra = self._kernel_spec
+        _combine(spectra, self._field_spec, ROWS, self._out_spec)
         self._ifft.execute()
         ny, nx = g.shape
         if out is None:

@@ -1,13 +1,15 @@
 """What the checkpoints of a run cost: the paper scenes written with checkpoints (cases.run.checkpoint) against the
 run's wall time.
 
-    .venv/bin/python benchmarks/checkpoint.py [--repeats 5] [--out benchmarks/results/checkpoint.json]
+    .venv/bin/python benchmarks/checkpoint.py [--repeats 5] [--stresses] [--out benchmarks/results/checkpoint.json]
 
 Each of the four paper scenes (rolling parallel / perpendicular to Ft, f_t = 0.46 / 0.77, dx = dW = 0.2 mm, 10
 periods, 11 checkpoints: end of loading and every period end) is run --repeats times in this process after a
 warm-up, writing its file. Reported, as medians: the run's wall time, the time spent writing checkpoints (measured
 around each write, summary `checkpoint_time`) and its share of the run (target < 5 %), the time of the final write,
-and the wall time of the same run kept in memory (no file, no checkpoints) for comparison.
+and the wall time of the same run kept in memory (no file, no checkpoints) for comparison. With --stresses the runs
+also compute the subsurface stresses of each stored step as they go (`run --stresses`, default depths; written to
+step files beside the run file, never into the checkpoints): the checkpoints must cost what they cost without.
 """
 import argparse
 import json
@@ -28,17 +30,20 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per scene (median; default 5)")
-    parser.add_argument("--out", default=str(HERE / "results" / "checkpoint.json"), help="JSON output")
+    parser.add_argument("--stresses", action="store_true", help="runs with stresses=True (run --stresses)")
+    parser.add_argument("--out", default=None, help="JSON output (default: benchmarks/results/checkpoint.json, "
+                        "checkpoint_stresses.json with --stresses)")
     args = parser.parse_args(argv)
+    args.out = args.out or str(HERE / "results" / ("checkpoint_stresses.json" if args.stresses else "checkpoint.json"))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for setting, f_t, overrides in SCENES:
             scene = api.load_scene(overrides=overrides)
-            api.run(scene, Path(tmp) / "warm.h5", overwrite=True)
+            api.run(scene, Path(tmp) / "warm.h5", overwrite=True, stresses=args.stresses)
             walls, shares, cps, finals, memory = [], [], [], [], []
             for i in range(args.repeats):
                 t = time.perf_counter()
-                r = api.run(scene, Path(tmp) / "run.h5", overwrite=True)
+                r = api.run(scene, Path(tmp) / "run.h5", overwrite=True, stresses=args.stresses)
                 total = time.perf_counter() - t
                 walls.append(r.wall_time)
                 cps.append(r.summary["checkpoint_time"])
@@ -54,7 +59,8 @@ def main(argv=None):
                   f"{row['checkpoint_s'] * 1e3:.0f} ms = {100 * row['share']:.1f} %, final write "
                   f"{row['final_write_s'] * 1e3:.0f} ms, in memory {row['in_memory_wall_s']:.2f} s, "
                   f"file {row['file_mb']:.1f} MB", flush=True)
-    result = {"date": time.strftime("%Y-%m-%d"), "repeats": args.repeats, "load": os.getloadavg()[0], "rows": rows}
+    result = {"date": time.strftime("%Y-%m-%d"), "repeats": args.repeats, "stresses": args.stresses,
+              "load": os.getloadavg()[0], "rows": rows}
     Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
     print(f"written to {args.out}")
 

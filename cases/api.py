@@ -37,27 +37,33 @@ def load_scene(path=None, overrides=None) -> Scene:
     return scene.with_overrides(overrides) if overrides else scene
 
 
-def run(scene: Scene, output=None, *, overwrite=False, progress=False) -> RunResult:
+def run(scene: Scene, output=None, *, overwrite=False, progress=False, stresses=False, depths=None) -> RunResult:
     """Run `scene` on its model ([solver] fidelity: "bem", or "mdr" for the 1-D MDR model) and return the result.
 
     output: an HDF5 file to write (str or Path; the result's `path`), or None to keep the result in memory only.
     A BEM run writes it as it goes (checkpoints with status 'incomplete'; `restart` continues a killed run).
     overwrite: replace an existing file (else OutputExistsError, before any work); OutputInUseError when another
     process is writing it. progress: True for progress lines on stderr, a callable(message), or False for none.
+    stresses: also compute the subsurface stresses of every stored step as the run goes, at `depths` (mm; None: 30
+    depths down to 2a), and add them to the file as `stresses(output, steps="all")` would (README, "Stresses below
+    the contact"); `result.subsurface` says which.
     """
     from rollcontact.cases.run.scene_run import run_scene
     out = check_output(output) if output is not None else None
-    return run_scene(_as_scene(scene), out, overwrite=overwrite, progress=_progress(progress))
+    return run_scene(_as_scene(scene), out, overwrite=overwrite, progress=_progress(progress),
+                     **_stress_options(stresses, depths))
 
 
-def restart(path, *, step=None, overrides=None, output=None, overwrite=False, progress=False) -> RunResult:
+def restart(path, *, step=None, overrides=None, output=None, overwrite=False, progress=False, stresses=False,
+            depths=None) -> RunResult:
     """Continue the stored run `path` from a stored step (default: the last) and return the whole run (the source's
     history and snapshots up to that step, then the continuation).
 
     overrides: only the keys a restart may change (cases.run.restart.RESTART_SAFE_KEYS, e.g. {"motion.periods": 20}).
     output: the HDF5 file to write, or None to keep the result in memory. It may be `path` itself when that run is
     not complete (a checkpoint of a killed run, or a failed run): the run then continues in its own file.
-    overwrite: replace another existing file.
+    overwrite: replace another existing file. stresses, depths: as in `run`; the stresses the source (its file, or
+    the folder a killed run left) holds already at the same depths are taken, not computed again.
     """
     from rollcontact.cases.run.restart import continued_scene, load_restart
     from rollcontact.cases.run.scene_run import run_scene
@@ -76,7 +82,14 @@ def restart(path, *, step=None, overrides=None, output=None, overwrite=False, pr
     progress = _progress(progress)
     if progress:
         progress(f"continuing {source.path} from step {source.step} (period {source.period})")
-    return run_scene(scene, out, overwrite=overwrite, progress=progress, restart=source, attrs=attrs)
+    return run_scene(scene, out, overwrite=overwrite, progress=progress, restart=source, attrs=attrs,
+                     **_stress_options(stresses, depths))
+
+
+def _stress_options(stresses, depths) -> dict:
+    if depths is not None and not stresses:
+        raise InputError(f"depths={depths!r}: applies only with stresses=True (--depths only with --stresses)")
+    return dict(stresses=bool(stresses), depths=depths)
 
 
 def read_run(path) -> RunResult:

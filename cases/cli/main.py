@@ -31,8 +31,9 @@ def _add_run(sub):
     p.add_argument("--step", type=int, help="with --restart: the stored step to continue from")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress lines")
     p.add_argument("--stresses", action="store_true",
-                   help="when the run ends, add the subsurface stresses of every stored step to its file "
-                        "(as `rollcontact stresses RUN.h5 --all-steps`)")
+                   help="also compute the subsurface stresses of each stored step when it is stored, kept if the run "
+                        "stops (RUN.h5.subsurface/) and added to its file (as `rollcontact stresses RUN.h5 "
+                        "--all-steps`); a restart takes those computed before")
     from rollcontact.cases.cli.stresses_cmd import add_depth_options
     add_depth_options(p)
     p.set_defaults(func=_run)
@@ -52,11 +53,13 @@ def _run(args) -> int:
     if args.restart:
         out = args.output or _restart_output(args, progress)
         run = lambda: api.restart(args.restart, step=args.step, overrides=args.overrides,  # noqa: E731
-                                  output=out, overwrite=args.overwrite, progress=progress)
+                                  output=out, overwrite=args.overwrite, progress=progress, stresses=args.stresses,
+                                  depths=depths)
     else:
         scene = api.load_scene(args.scene, args.overrides)
         out = args.output or _free_default(scene.name, args.overrides, None, progress)
-        run = lambda: api.run(scene, out, overwrite=args.overwrite, progress=progress)  # noqa: E731
+        run = lambda: api.run(scene, out, overwrite=args.overwrite, progress=progress,  # noqa: E731
+                              stresses=args.stresses, depths=depths)
     sigterm_as_interrupt(flag=False)
     try:
         result = run()
@@ -71,20 +74,18 @@ def _run(args) -> int:
               "which is kept", file=sys.stderr)
     print(format_summary(result))
     if args.stresses and result.path is not None:
-        _add_stresses(result, depths, progress)
+        _report_stresses(result)
     return 0 if result.status == "complete" else 1
 
 
-def _add_stresses(result, depths, progress):
-    """`run --stresses`: the subsurface stresses of every stored step, added to the run's file when it ends."""
+def _report_stresses(result):
+    """`run --stresses`: what the run added to its file (the stresses of its stored steps, computed as it went)."""
     if not len(result.field_steps):
         print("--stresses: the run stored no field snapshots (output.fields = 'none', or the MDR model); no "
               "subsurface stresses computed", file=sys.stderr)
-        return
-    from rollcontact.cases.cli.stresses_cmd import report
-    from rollcontact.cases.run.stresses import add_subsurface
-    print(report(add_subsurface(result.path, steps="all", depths=depths, progress=print if progress else None),
-                 result.path))
+    elif result.subsurface.get("steps"):
+        from rollcontact.cases.cli.stresses_cmd import report
+        print(report(result.subsurface, result.path))
 
 
 def _stress_depths(args):

@@ -32,8 +32,13 @@ def stresses_handler(args) -> int:
 def report(result, path) -> str:
     """The line that says what `add_subsurface` wrote."""
     z = result["z"]
-    return (f"subsurface stresses of step(s) {', '.join(map(str, result['steps']))} at {len(z)} depths "
-            f"({z[0]:.4g} ... {z[-1]:.4g} mm) written to {path} (/subsurface; computed in {result['seconds']:.2f} s)")
+    reused = len(result.get("reused", ()))
+    kept = f"; {reused} step(s) computed before and kept" if reused else ""
+    steps = [int(s) for s in result["steps"]]
+    listed = ", ".join(map(str, steps)) if len(steps) <= 12 else f"{steps[0]}, {steps[1]}, ..., {steps[-1]}"
+    return (f"subsurface stresses of step(s) {listed} at {len(z)} depths "
+            f"({z[0]:.4g} ... {z[-1]:.4g} mm) written to {path} (/subsurface; computed in {result['seconds']:.2f} s"
+            f"{kept})")
 
 
 def _progress(message):

@@ -48,16 +48,19 @@ def version() -> str:
     return __version__
 
 
-def write_run(path, data: RunResult, chunks: dict | None = None) -> Path:
+def write_run(path, data: RunResult, chunks: dict | None = None, extend=None) -> Path:
     """Write `data` to `path` atomically (a temporary file in the same folder, renamed into place); returns the
     path. chunks: {field name: [gzip-compressed (ny, nx) snapshots]} already compressed by the caller (a run
     compresses each snapshot once, when it is recorded); the other fields are compressed here. Every snapshot is
-    one gzip chunk either way."""
+    one gzip chunk either way. extend: callable(h5) that adds to the file before it is renamed into place (the
+    /subsurface of `run --stresses`)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with _replacing(path) as tmp:
         with h5py.File(tmp, "w") as h5:
             fill_run(h5, data, chunks or {})
+            if extend is not None:
+                extend(h5)
     return path
 
 

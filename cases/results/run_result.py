@@ -92,6 +92,9 @@ class RunResult:
     path: Path | None = None
     #: the gzip chunks of the snapshots as a run compressed them for its file (empty when read back)
     snapshot_chunks: dict = field(default_factory=dict, repr=False, compare=False)
+    #: what a run with stresses=True (`run --stresses`) wrote to /subsurface: 'steps', 'z' (mm), 'seconds' (computing),
+    #: 'computed' and 'reused' (the steps this run computed, and those computed before a restart); empty otherwise
+    subsurface: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def scene(self):

@@ -25,13 +25,15 @@ from rollcontact.solver.tangential import TangentialParams, kernels_cached
 PROGRESS_INTERVAL = 2.0
 
 
-def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None) -> RunResult:
+def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stresses=None) -> RunResult:
     """Run `scene` on the boundary-element model and return the result (written by the caller).
 
     progress: callable(message) for progress lines (None: silent). restart: a cases.run.restart.RestartSource to
     continue from (its history and snapshots up to the restart step are part of the result). checkpoint: a
     cases.run.checkpoint.Checkpoints that writes the finished steps as the run goes (at every period end and
-    every few seconds). A scene whose grid would exceed the element limit raises SceneError before any work.
+    every few seconds). stresses: a cases.run.step_stresses.StepStresses that computes the subsurface stresses of each
+    stored step when it is stored (those a restart inherits first). A scene whose grid would exceed the element limit
+    raises SceneError before any work.
     """
     t_start = time.perf_counter()
     scene_grid(scene)          # refuses a scene whose grid would exceed the element limit, before any work
@@ -50,10 +52,16 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None) -> Ru
         _announce(progress, grid, path, op, scene)
     status, error, state_label, interrupted = "complete", "", None, None
     last_report = time.perf_counter()
+    if stresses is not None:
+        stresses.start(grid.x, grid.y, scene.normal_reference.a)       # the summary's a (cases.run.summary)
     try:
+        if stresses is not None:
+            stresses.catch_up(recorder)          # the snapshots a restart inherits
         for rec in run_path(op, scene.profile, path, Fn=scene.load.Fn, mu=scene.load.mu,
                             params=params, state=None if restart is None else restart.state):
             row = recorder.add(rec)
+            if stresses is not None:
+                stresses.catch_up(recorder)
             if checkpoint is not None:
                 checkpoint.after_step(rec.step in ends, result, len(recorder.stored))
             if progress and (time.perf_counter() - last_report > PROGRESS_INTERVAL or rec.step == path.n_steps - 1):

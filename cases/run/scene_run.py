@@ -11,7 +11,10 @@ cases.run.mdr_run) and, given a file, writes the result to HDF5. No result is lo
   period with status 'incomplete';
 * a run that fails still writes the steps it completed (status 'failed'), and an interrupted one (Ctrl-C,
   SIGTERM through the CLI) writes them before RunInterrupted is raised; neither is written over a complete run
-  file: they, and the checkpoints of a run that replaces one, go to <name>.partial.h5 beside it.
+  file: they, and the checkpoints of a run that replaces one, go to <name>.partial.h5 beside it;
+* with `stresses`, the subsurface stresses of each stored step are computed when it is stored and kept in a file of
+  their own until the final write puts them in the run's file (cases.run.step_stresses): a killed run keeps them,
+  and its restart computes only the others.
 
 Units: mm, N, MPa.
 """
@@ -23,7 +26,9 @@ import signal
 import sys
 import threading
 
-from rollcontact.bem.errors import InputError, OutputExistsError
+import numpy as np
+
+from rollcontact.bem.errors import InputError, OutputExistsError, RollcontactError
 from rollcontact.bem.wisdom import process_exists
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary, wait_for_replaced, write_run
 from rollcontact.cases.results.lock import OutputLock
@@ -33,23 +38,29 @@ from rollcontact.cases.run.bem_run import run_bem
 from rollcontact.cases.run.checkpoint import Checkpoints
 from rollcontact.cases.run.creep_run import run_creep
 from rollcontact.cases.run.mdr_run import run_mdr
+from rollcontact.cases.run.step_stresses import StepStresses
 from rollcontact.cases.scene.scene import Scene
 
 
 def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart=None,
-              attrs: dict | None = None, label: str | None = None, lock: OutputLock | None = None) -> RunResult:
+              attrs: dict | None = None, label: str | None = None, lock: OutputLock | None = None,
+              stresses: bool = False, depths=None) -> RunResult:
     """Run `scene`; write the result to `out` (HDF5) unless it is None. Returns the result (also on failure), its
     `path` the file written.
 
     overwrite: replace an existing `out` (else OutputExistsError, before any work). progress: callable(message)
     for progress lines (None: silent); restart: a cases.run.restart.RestartSource to continue from (BEM runs);
     attrs: further root attributes of the file (a restart's source and step); label: how messages name `out`
-    (default '-o OUT'); lock: the output's lock when the caller holds it already (a sweep, which claims its runs).
+    (default '-o OUT'); lock: the output's lock when the caller holds it already (a sweep, which claims its runs);
+    stresses: add the subsurface stresses of every stored step to the file, computed as the run goes, at `depths`
+    (mm; None: the default depths), as `rollcontact stresses RUN.h5 --all-steps` would (the result's `subsurface`).
     OutputInUseError when another process writes `out` (or the partial file beside it). A symbolic link is
     followed: the file it points to is the output.
     """
     if out is None:
-        return _run_model(scene, progress, restart, None)
+        if stresses:
+            raise InputError("--stresses (stresses=True): the stresses go into the run's file; give an output file")
+        return _run_model(scene, progress, restart, None, None)
     out = Path(out).resolve() if Path(out).is_symlink() else Path(out)
     label = label or f"-o {out}"
     locks = [] if lock is not None else [OutputLock(out, label=label).acquire()]
@@ -60,29 +71,51 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
         for path in (out, target):
             remove_stale_temporaries(path)
         checkpoints = Checkpoints(target, attrs) if scene.solver.fidelity == "bem" and not scene.rolling_on else None
+        stepwise = StepStresses(scene, target, depths, restart, progress) if stresses else None
         try:
-            result = _run_model(scene, progress, restart, checkpoints)
+            result = _run_model(scene, progress, restart, checkpoints, stepwise)
         except RunInterrupted as exc:
-            _finish(exc.result, out, target, attrs)
+            _finish(exc.result, out, target, attrs, stepwise)
             raise
         finally:
             if checkpoints is not None:
                 checkpoints.close()
-        _finish(result, out, target, attrs)
+        cut = stepwise is not None and not _complete_stresses(stepwise, result, progress)
+        _finish(result, out, target, attrs, stepwise)
+        if cut:
+            raise KeyboardInterrupt     # after the run's file is written, with the stresses computed until then
     finally:
         for held in reversed(locks):
             held.release()
     return result
 
 
-def _run_model(scene, progress, restart, checkpoints) -> RunResult:
+def _run_model(scene, progress, restart, checkpoints, stresses) -> RunResult:
     if scene.rolling_on:
         if restart is not None:
             raise InputError("--restart: a [rolling] scene is solved in one step; there is nothing to restart")
         return run_creep(scene, progress=progress)
     if scene.solver.fidelity == "mdr":
         return run_mdr(scene, progress=progress)
-    return run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints)
+    return run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints, stresses=stresses)
+
+
+def _complete_stresses(stresses, result: RunResult, progress):
+    """The stresses of the stored steps still without them: the last step of a run that failed (its fields are
+    stored when it stops), every step of a model that does not compute them as it goes ([rolling] scenes). An error
+    here, or an interrupt (then False is returned), is reported and leaves the run's own results to be written."""
+    if not len(result.field_steps):
+        return True
+    stresses.start(result.x, result.y, result.summary.get("a"))
+    try:
+        for i, step in enumerate(result.field_steps):
+            stresses.ensure(step, *(result.fields[n][i] for n in ("p", "tau_x", "tau_y")))
+    except (RollcontactError, KeyboardInterrupt) as exc:
+        if progress:
+            why = "interrupted" if isinstance(exc, KeyboardInterrupt) else f"{type(exc).__name__}: {exc}"
+            progress(f"--stresses: stopped at step {step} ({why}); the run is written with the stresses computed")
+        return not isinstance(exc, KeyboardInterrupt)
+    return True
 
 
 def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
@@ -112,17 +145,25 @@ def describe_file(path: Path) -> str:
     return f"the {stored['status'] or 'unfinished'} run file {path} (scene '{scene}')"
 
 
-def _finish(result: RunResult, out: Path, target: Path, attrs):
+def _finish(result: RunResult, out: Path, target: Path, attrs, stresses=None):
     """The final write: to `out` when the run completed (then the partial file this run wrote beside a complete one
-    goes), else to `target`. A second Ctrl-C or SIGTERM during it waits until it is done."""
+    goes), else to `target`, with the stresses computed as the run went (then their folder goes). A second Ctrl-C or
+    SIGTERM during it waits until it is done."""
     result.attrs.update(attrs or {})
     path = out if result.status == "complete" else target
+    filled = []
+    extend = None if stresses is None else (lambda h5: filled.extend(stresses.fill(h5, result.field_steps, result.fields)))
     with _deferred_interrupts():
         try:
-            write_run(path, result, result.snapshot_chunks)
+            write_run(path, result, result.snapshot_chunks, extend=extend)
             result.path = path
             if path == out and target != out:
                 target.unlink(missing_ok=True)      # this run's checkpoints (the name was free when it started)
+            if stresses is not None:
+                stresses.discard()
+                z = stresses.z if stresses.z is not None else np.zeros(0)
+                result.subsurface = dict(steps=filled, z=z, seconds=stresses.seconds,
+                                         computed=list(stresses.computed), reused=list(stresses.reused))
         finally:
             wait_for_replaced()
 

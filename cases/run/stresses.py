@@ -53,6 +53,17 @@ def parse_depths(text: str) -> np.ndarray:
     return np.unique(np.array(values))
 
 
+def run_depths(scene: Scene, a: float, depths=None) -> np.ndarray:
+    """The depths (mm) of a run's stresses: `depths` checked (InputError naming them), or, when None, the default
+    depths of the contact radius a (mm; the run summary's) or, when a is not > 0, of the scene's."""
+    if depths is None:
+        return default_depths(a if a > 0 else scene.contact_radius)
+    z = np.asarray(depths, dtype=float)
+    if z.ndim != 1 or not len(z) or not np.all(np.isfinite(z) & (z >= 0)):
+        raise InputError(f"depths {depths!r}: must be finite values >= 0 mm")
+    return z
+
+
 def grid_of(x, y) -> Grid:
     """The world-fixed `Grid` whose cell centres are the stored /grid/x, /grid/y (mm)."""
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
@@ -105,10 +116,7 @@ def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 
             nu = scene.materials.nu2
             grid = grid_of(src["grid/x"][()], src["grid/y"][()])
             a = float(src["summary"].attrs.get("a", np.nan)) if "summary" in src else np.nan
-            z = np.asarray(depths, dtype=float) if depths is not None else default_depths(
-                a if a > 0 else scene.contact_radius)
-            if z.ndim != 1 or not len(z) or not np.all(np.isfinite(z) & (z >= 0)):
-                raise InputError(f"depths {depths!r}: must be finite values >= 0 mm")
+            z = run_depths(scene, a, depths)
             with replacing(path) as tmp:
                 with h5py.File(tmp, "w") as dst:
                     for key, value in src.attrs.items():
@@ -123,21 +131,10 @@ def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 
 
 def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
     """Create /subsurface in `dst` and fill it depth by depth, step by step (tractions read from `src`)."""
-    group = dst.create_group("subsurface")
-    group.attrs["nu"] = nu
-    group.attrs["depths"] = "default" if default else "given"
-    for name, values in (("z", z), ("step", np.asarray(steps, dtype=np.int64))):
-        group.create_dataset(name, data=values).attrs["units"] = UNITS[name]
-    ny, nx = grid.shape
-    shape = (len(steps), len(z), ny, nx)
-    out = {}
-    for name in SUBSURFACE_NAMES:
-        out[name] = group.create_dataset(name, shape=shape, dtype=np.float64, chunks=(1, 1, ny, nx),
-                                         compression="gzip", compression_opts=GZIP_LEVEL)
-        out[name].attrs["units"] = UNITS[name]
+    out = create_group(dst, nu, z, steps, default, grid.shape)
     stored = [int(s) for s in src["fields/step"][()]]
     op = SubsurfaceStresses(grid, nu, threads=threads)
-    layer = np.empty((6, ny, nx))
+    layer = np.empty((6,) + grid.shape)
     seconds = 0.0
     for j, depth in enumerate(z):        # depths outside: each depth's kernels are built once for all the steps
         for i, step in enumerate(steps):
@@ -145,17 +142,38 @@ def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
             p, tx, ty = (src[f"fields/{n}"][k] for n in ("p", "tau_x", "tau_y"))
             t0 = time.perf_counter()
             op.set_tractions(p, tx, ty)
-            op.layer(float(depth), out=layer)
-            derived = invariants(layer)
+            values = layer_fields(op, float(depth), layer)
             seconds += time.perf_counter() - t0
-            for m, name in enumerate(COMPONENTS):
-                out[name][i, j] = layer[m]
-            for name, values in derived.items():
-                out[name][i, j] = values
+            for name, v in values.items():
+                out[name][i, j] = v
         if progress:
             progress(f"subsurface stresses: depth {j + 1}/{len(z)} (z = {float(depth):.4g} mm), {len(steps)} "
                      f"step(s), max von Mises {out['von_mises'][:, j].max():.4g} MPa")
     return seconds
+
+
+def create_group(h5, nu, z, steps, default, shape) -> dict:
+    """The /subsurface group of the open run file `h5` (layout in cases.results.subsurface) for `steps` at the depths
+    z (mm) on a grid of `shape` (ny, nx), its nine datasets created (one gzip chunk per layer) and returned by name."""
+    group = h5.create_group("subsurface")
+    group.attrs["nu"] = nu
+    group.attrs["depths"] = "default" if default else "given"
+    for name, values in (("z", z), ("step", np.asarray(steps, dtype=np.int64))):
+        group.create_dataset(name, data=values).attrs["units"] = UNITS[name]
+    ny, nx = shape
+    out = {}
+    for name in SUBSURFACE_NAMES:
+        out[name] = group.create_dataset(name, shape=(len(steps), len(z), ny, nx), dtype=np.float64,
+                                         chunks=(1, 1, ny, nx), compression="gzip", compression_opts=GZIP_LEVEL)
+        out[name].attrs["units"] = UNITS[name]
+    return out
+
+
+def layer_fields(op: SubsurfaceStresses, depth: float, layer=None) -> dict:
+    """The nine stored fields (SUBSURFACE_NAMES, MPa, each (ny, nx)) at `depth` (mm) below the tractions set on `op`:
+    the six components (views into `layer`, a (6, ny, nx) work array) and the invariants."""
+    layer = op.layer(depth, out=layer)
+    return {**{name: layer[m] for m, name in enumerate(COMPONENTS)}, **invariants(layer)}
 
 
 def _text(value) -> str:

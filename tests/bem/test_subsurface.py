@@ -368,3 +368,21 @@ def test_kept_kernels_give_the_same_layer_as_fresh_ones():
     fresh.set_tractions(*second)
     assert np.array_equal(kept, fresh.layer(0.4))
     assert np.array_equal(op.layer(0.7), fresh.layer(0.7))
+
+
+def test_kernel_spectra_kept_for_several_depths_give_the_same_layers_within_their_budget():
+    """kept_bytes keeps the kernel spectra of several depths (tractions that come one step at a time, all depths each):
+    every layer equals that of a fresh operator bit for bit, and no more depths are kept than the budget holds."""
+    g = Grid(7, 5, 0.3, 0.2, -3, -2)
+    rng = np.random.default_rng(4)
+    depths = [0.0, 0.2, 0.5, 1.1]
+    one_depth = SubsurfaceStresses(g, NU)._kernel_spec.nbytes
+    op = SubsurfaceStresses(g, NU, kept_bytes=3 * one_depth)
+    for _ in range(3):
+        tractions = rng.random((3,) + g.shape)
+        op.set_tractions(*tractions)
+        fresh = SubsurfaceStresses(g, NU)
+        fresh.set_tractions(*tractions)
+        for z in depths:
+            assert np.array_equal(op.layer(z), fresh.layer(z))
+    assert sorted(op._kept) == depths[:3]
