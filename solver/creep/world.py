@@ -46,7 +46,7 @@ from rollcontact.bem.errors import ContactEdgeError, GrossSlidingError, InputErr
 from rollcontact.solver.creep.steady import SPIN_OFFSET
 from rollcontact.solver.normal.normcg import NormalResult
 from rollcontact.solver.rolling.coupled import solve_coupled_step
-from rollcontact.solver.rolling.stepping import StepParams, _check_inside, shifted_field
+from rollcontact.solver.rolling.stepping import StepParams, check_contact_inside, shifted_field
 from rollcontact.solver.tangential.shift import TangentialResult
 
 #: The initial states of `roll_world` (module docstring).
@@ -139,7 +139,7 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         normal, tang, outer = solve_coupled_step(
             op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal, tangential_params=params.tangential,
             coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess, **kw)
-        _check_inside(normal.contact, k, (centre, 0.0))
+        check_contact_inside(normal.contact, k, (centre, 0.0))
         tau = tang.traction
         moment = -float(((X - centre) * tau[1] - Y * tau[0]).sum() * dA)
         if load == "rest":

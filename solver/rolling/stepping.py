@@ -220,7 +220,7 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             state.traction, mu=mu,
             normal_params=params.normal, tangential_params=params.tangential,
             coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess)
-        _check_inside(normal.contact, n, centre)
+        check_contact_inside(normal.contact, n, centre)
         state = StepState(n, normal.pressure, tangential.traction,
                           state.rigid_shift + tangential.shift_increment, normal.approach)
         work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
@@ -239,7 +239,7 @@ def shifted_field(field, rows, cols):
     return out
 
 
-def _check_inside(contact, step, centre):
+def check_contact_inside(contact, step, centre):
     edge = contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any() or contact[:, -1].any()
     if edge:
         raise ContactEdgeError(
