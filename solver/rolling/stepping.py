@@ -240,6 +240,8 @@ def shifted_field(field, rows, cols):
 
 
 def check_contact_inside(contact, step, centre):
+    """ContactEdgeError when the contact (bool (ny, nx)) of `step` touches the grid's edge (centre: mm, for the
+    message)."""
     edge = contact[0, :].any() or contact[-1, :].any() or contact[:, 0].any() or contact[:, -1].any()
     if edge:
         raise ContactEdgeError(
