@@ -19,8 +19,9 @@ Criteria (tolerances are parameters of `classify`):
                   judge.  The message says so, and, for a geometric decay, estimates how many more periods
                   would bring the increment below tol.
 * 'cyclic_slip' : by `cyclic_slip`, for a run whose loads vary within the period: 'shakedown' by U, but the
-                  frictional work per period has settled (as ratcheting's increments) above WORK_FLOOR mu Fn U0:
-                  the contact slips to and fro every period (fretting, a Mindlin-Deresiewicz cycle) while U returns.
+                  frictional work per period does not go to zero (settled, or converging to a limit > 0, above
+                  WORK_FLOOR mu Fn U0): the contact slips to and fro every period (fretting, a Mindlin-Deresiewicz
+                  cycle) while U returns.
 * 'gross_sliding': never produced here; set by the caller when its solver reports that no equilibrium
                   exists (Ft > mu Fn), see `gross_sliding`.
 A decay slower than settle_rtol per period is reported as ratcheting: over the periods run it is not
@@ -201,17 +202,28 @@ def geometric_decay(increments, *, tol=DEFAULT_TOL, window=4, spread_tol=0.01) -
 def cyclic_slip(cls: Classification, work_per_period, work_scale: float, *,
                 settle_periods: int = DEFAULT_SETTLE_PERIODS) -> Classification:
     """`cls` turned 'cyclic_slip' when it is 'shakedown' by U but the frictional work of the completed periods
-    (N mm, one value per period) has settled above WORK_FLOOR * work_scale (N mm: mu Fn U0): changes <=
-    cls.settle_rtol relative over the last settle_periods pairs, the test of ratcheting. A work that still decays
-    (shaking down) or is too short to judge keeps 'shakedown'."""
+    (N mm, one value per period) does not go to zero: it has settled above WORK_FLOOR * work_scale (N mm: mu Fn U0;
+    changes <= cls.settle_rtol relative over the last settle_periods pairs, the test of ratcheting), or it still
+    changes but geometrically towards a limit above half its last value and the floor (Aitken's extrapolation of
+    the last three: a decay to zero, W_k = C q^k, extrapolates to 0). A work that decays to zero (shaking down) or
+    too few periods to judge keep 'shakedown'."""
     _check_positive("work_scale", work_scale)
     W = np.asarray(work_per_period, dtype=float).ravel()
-    if cls.state != "shakedown" or W.size < settle_periods + 1 or not W[-1] > WORK_FLOOR * work_scale:
+    floor = WORK_FLOOR * work_scale
+    if cls.state != "shakedown" or W.size < max(settle_periods, 2) + 1 or not W[-1] > floor:
         return cls
     tail = W[-(settle_periods + 1):]
-    if not np.all(np.abs(np.diff(tail)) <= cls.settle_rtol * tail[1:]):
-        return cls
+    if np.all(np.abs(np.diff(tail)) <= cls.settle_rtol * tail[1:]):
+        limit, how = W[-1], f"settled within {cls.settle_rtol:g} over {settle_periods} periods"
+    else:
+        d1, d2 = W[-2] - W[-3], W[-1] - W[-2]
+        q = d2 / d1 if d1 != 0.0 else math.nan
+        if not 0.0 < q < 1.0:
+            return cls
+        limit = W[-1] + d2 * q / (1.0 - q)
+        if not (limit > 0.5 * W[-1] and limit > floor):
+            return cls
+        how = f"changing by a factor {q:.3f} per period towards {limit:.4g} N mm"
     return replace(cls, state="cyclic_slip",
                    message=f"cyclic slip: U settled ({cls.message}), but every period still dissipates "
-                           f"{W[-1]:.4g} N mm ({W[-1] / work_scale:.3g} mu Fn U0, settled within "
-                           f"{cls.settle_rtol:g} over {settle_periods} periods)")
+                           f"{W[-1]:.4g} N mm ({W[-1] / work_scale:.3g} mu Fn U0, {how})")
