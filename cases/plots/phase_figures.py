@@ -73,8 +73,16 @@ def varies_phase(points) -> bool:
 
 
 def _amplitude_key(points) -> str:
-    return "ft_amplitude" if len({p.ft_amplitude for p in points}) > 1 or \
-        len({p.fn_amplitude for p in points}) <= 1 else "fn_amplitude"
+    return amplitude_key([p.ft_amplitude for p in points], [p.fn_amplitude for p in points])
+
+
+def amplitude_key(ft_amplitudes, fn_amplitudes) -> str:
+    """The amplitude a figure is drawn over: the one that varies (ft_amplitude if both do), else the one that is not
+    zero (an Fn oscillation set with --set), else ft_amplitude."""
+    ft, fn = set(ft_amplitudes), set(fn_amplitudes)
+    if len(ft) > 1 or (len(fn) <= 1 and (ft != {0.0} or fn <= {0.0})):
+        return "ft_amplitude"
+    return "fn_amplitude"
 
 
 def _setting(angle) -> tuple[str, str]:
@@ -166,8 +174,7 @@ def phase_limits_figure(rows, title, reference=None):
     """f_t,lim against the phase: one line per (setting, amplitude), the bracket as an error bar; `reference`
     {angle: (lower, upper)} draws the limit without oscillation as a band."""
     fig, ax = plt.subplots(figsize=(7.5, 4.8), layout="constrained")
-    key = "ft_amplitude" if len({r["ft_amplitude"] for r in rows}) > 1 or \
-        len({r["fn_amplitude"] for r in rows}) <= 1 else "fn_amplitude"
+    key = amplitude_key([r["ft_amplitude"] for r in rows], [r["fn_amplitude"] for r in rows])
     for angle in sorted({r["angle"] for r in rows}):
         name, colour = _setting(angle)
         for amp in sorted({r[key] for r in rows if r["angle"] == angle}):

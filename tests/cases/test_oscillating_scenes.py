@@ -249,3 +249,14 @@ def test_the_default_grid_resolves_the_slip_annulus_of_an_oscillation_without_ro
     assert rolling.default_elements_per_radius() == RESOLUTION_PER_RADIUS               # rolling: today's default
     given = scene(load={"ft": 0.0, "ft_amplitude": 0.3}, grid={"dx": 0.4})
     assert given.grid.dx == 0.4 and "grid.dx" not in given.derived
+
+
+def test_phase_figures_are_drawn_over_the_amplitude_that_varies_or_is_set():
+    # a limit search over the phase with `--set load.fn_amplitude=0.3` has fn_amplitude 0.3 and ft_amplitude 0
+    # everywhere: its figure is over fn_amplitude (it was labelled ft_amplitude = 0)
+    from rollcontact.cases.plots.phase_figures import amplitude_key
+    assert amplitude_key([0.0, 0.0], [0.3, 0.3]) == "fn_amplitude"
+    assert amplitude_key([0.0, 0.0], [0.1, 0.2]) == "fn_amplitude"
+    assert amplitude_key([0.2, 0.2], [0.0, 0.0]) == "ft_amplitude"
+    assert amplitude_key([0.1, 0.2], [0.3, 0.3]) == "ft_amplitude"
+    assert amplitude_key([0.0], [0.0]) == "ft_amplitude"
