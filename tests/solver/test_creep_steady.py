@@ -197,8 +197,9 @@ def test_linear_limit_error_falls_with_refinement_to_1_percent_at_81_elements(ra
     -0.55 % at 41, +0.31 % at 81 and not monotone in n), the error of C11, C22 against the table falls and is
     within 1 % at 81 (the issue's bound at ~80). Measured (benchmarks/creep_linear.py), area-corrected (C11, C22, C23)
     at 81: (+0.40, +0.40, +0.05), (+0.19, +0.39, -0.02), (+0.28, +0.97, +0.68) %; 21 -> 41 -> 81 falls at first order.
-    Raw (not corrected): largest +1.38 % (C11 at a/b = 0.5, nu = 0.5, not tested here: area-corrected +1.07 %,
-    extrapolated +0.9 %, where the table's nu = 0.5 column is itself non-monotone, 4.80-4.83 over a/b = 0.3-0.5)."""
+    Raw (not corrected): largest +1.38 % (C11 at a/b = 0.5, nu = 0.5, not tested here: area-corrected +1.07 %, and
+    +0.92 % at n = 161, converging to +0.76 %: the table's entry 4.83 sits below its neighbours 4.82 and 4.91 at
+    a/b = 0.4 and 0.6, docs/creep_rolling.md)."""
     table = kalker_coefficients(ratio, nu)
     errors = {}
     for n in (41, 81):
