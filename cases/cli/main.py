@@ -75,7 +75,21 @@ def _run(args) -> int:
     print(format_summary(result))
     if args.stresses and result.path is not None:
         _report_stresses(result)
+    elif not args.stresses:
+        _note_unused_stresses(args.restart, result.path)
     return 0 if result.status == "complete" else 1
+
+
+def _note_unused_stresses(*run_files):
+    """A run without --stresses beside step files of an earlier `run --stresses` (killed) says they are there."""
+    from rollcontact.cases.run.step_stresses import folder_of
+    for run_file in {Path(f) for f in run_files if f}:
+        folder = folder_of(run_file)
+        steps = list(folder.glob("step_*.h5")) if folder.is_dir() else []
+        if steps:
+            print(f"note: {folder} holds the subsurface stresses of {len(steps)} stored step(s) of an earlier "
+                  "`run --stresses` that stopped; this run (without --stresses) did not use them: restart with "
+                  "--stresses to take them, or remove the folder", file=sys.stderr)
 
 
 def _report_stresses(result):

@@ -119,6 +119,10 @@ def test_kill_9_keeps_the_stored_steps_stresses_and_the_restart_takes_them(tmp_p
     assert len(kept) >= 3 and set(kept.values()) == {(4, len(part.y), len(part.x))}
     inherited = [int(s) for s in part.field_steps if int(s) in kept]     # the steps the restart continues after
     assert len(inherited) >= 2
+    # a restart without --stresses (into another file) leaves the step files and says so
+    assert cli(["run", "--restart", str(killed), "-o", str(tmp_path / "plain.h5")]) == 0
+    assert f"note: {folder} holds the subsurface stresses of {len(kept)} stored step(s)" in capsys.readouterr().err
+    assert len(list(folder.glob("step_*.h5"))) == len(kept)
     assert cli(["run", "--restart", str(killed), "--stresses", "--depths", DEPTHS]) == 0
     captured = capsys.readouterr()
     written = {int(line.split()[4]) for line in captured.err.splitlines() if line.startswith("subsurface stresses of")}
