@@ -89,6 +89,7 @@ class _LimitSearch:
         if is_done(run):
             summary = stored_summary(run.path)["summary"]
         else:
+            raise_if_interrupted()    # an interrupt swallowed during the previous probe (jobs = 1: in this process)
             result = execute_run(toml, scene.name, str(run.path), None if extend_from is None else str(extend_from))
             if result["status"] == "claimed":       # another limit search on the folder computes this probe
                 result = wait_for_claimed(run)

@@ -205,8 +205,6 @@ def default_jobs() -> int:
         return os.cpu_count() or 1
 
 
-
-
 def sigterm_as_interrupt(flag=True):
     """Make SIGTERM behave like Ctrl-C (SIGINT) in the CLI, so that a run writes its finished steps and a sweep
     stops its workers and writes its summary. With `flag` both signals also set `interrupt_requested`, which makes
@@ -221,4 +219,18 @@ def sigterm_as_interrupt(flag=True):
         signal.signal(signal.SIGTERM, handler)
         signal.signal(signal.SIGINT, handler)  # Ctrl-C: the same, so that a swallowed one is raised again too
     except ValueError:                      # not the main thread (e.g. called from a test thread)
-        pass
+        return
+    if flag and not getattr(sys.unraisablehook, "quiet_interrupts", False):
+        sys.unraisablehook = _quiet_interrupts(sys.unraisablehook)
+
+
+def _quiet_interrupts(previous):
+    """An unraisable hook that drops the report of a KeyboardInterrupt swallowed where Python cannot raise it (a
+    signal landing in a weakref callback or __del__ prints 'Exception ignored in ...' and a traceback) once
+    `interrupt_requested` is set: the interrupt is raised again at the next check, so the report is noise."""
+    def hook(unraisable):
+        if issubclass(unraisable.exc_type, KeyboardInterrupt) and interrupt_requested.is_set():
+            return
+        previous(unraisable)
+    hook.quiet_interrupts = True
+    return hook

@@ -79,3 +79,25 @@ def test_an_interrupted_limit_search_says_where_its_results_are_and_how_to_resum
     assert "Traceback" not in stderr
     assert f"interrupted; 0 of 1 search(es) finished are in {tmp_path / 'ls'}/limits.csv" in stderr, stderr
     assert "rerun the same command to resume" in stderr
+
+
+def test_a_swallowed_interrupt_is_not_reported_as_a_traceback_once_it_is_requested():
+    # A Ctrl-C that lands in a weakref callback or __del__ cannot be raised there: Python reports it through
+    # sys.unraisablehook ("Exception ignored in ...", a traceback) and the sweep raises it again at its next check
+    # (interrupt_requested). The report is dropped then, and only then; any other exception is still reported.
+    from types import SimpleNamespace
+    from rollcontact.cases.sweep.workers import _quiet_interrupts, interrupt_requested
+    seen = []
+    hook = _quiet_interrupts(seen.append)
+    swallowed = SimpleNamespace(exc_type=KeyboardInterrupt)
+    other = SimpleNamespace(exc_type=ValueError)
+    assert not interrupt_requested.is_set()
+    hook(swallowed)
+    assert seen == [swallowed]                  # no interrupt was requested: a stray KeyboardInterrupt is reported
+    interrupt_requested.set()
+    try:
+        hook(swallowed)
+        hook(other)
+    finally:
+        interrupt_requested.clear()             # one command per process: the flag must not leak into other tests
+    assert seen == [swallowed, other]
