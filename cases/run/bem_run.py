@@ -10,10 +10,9 @@ from __future__ import annotations
 import time
 
 from rollcontact.bem.errors import GrossSlidingError, RollcontactError
-from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
-from rollcontact.cases.run.discretise import field_steps, scene_grid, scene_path
+from rollcontact.cases.run.discretise import field_steps, scene_grid, scene_operator, scene_path
 from rollcontact.cases.run.recorder import StepRecorder
 from rollcontact.cases.run.summary import summarise
 from rollcontact.cases.scene.scene import Scene
@@ -39,8 +38,7 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
     scene_grid(scene)          # refuses a scene whose grid would exceed the element limit, before any work
     path = scene_path(scene)
     grid = scene_grid(scene, path)
-    op = HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
-                           coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+    op = scene_operator(scene, grid)
     tol, max_iter = scene.solver.tol, scene.solver.max_iter
     params = StepParams(NormalParams(tol=tol, max_iter=max_iter), TangentialParams(tol=tol, max_iter=max_iter),
                         coupling_tol=max(tol, 1e-10))

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from rollcontact.bem.errors import InputError, OutputExistsError
-from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, kalker_coefficients,
@@ -48,7 +48,7 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
         raise InputError(f"creep-curve --of {varied!r}: allowed values are {list(VARIED)}")
     fractions = np.geomspace(0.02, 4.0, 20) if fractions is None else np.asarray(fractions, dtype=float)
     grid, pair = creep_grid(scene), scene.material_pair
-    op = HalfSpaceOperator(grid, pair, coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
+    op = scene_operator(scene, grid)
     if op.coupled:
         raise InputError(f"creep-curve: coupled materials (Dundurs beta = {pair.beta:.3g}) need the normal problem "
                          "at every creepage; run the scene per creepage (rollcontact run), or set "

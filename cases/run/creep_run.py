@@ -29,7 +29,8 @@ import numpy as np
 from rollcontact.bem.errors import RollcontactError
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
-from rollcontact.cases.run.creep_steady import scene_operator, solve_scene
+from rollcontact.cases.run.creep_steady import solve_scene
+from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.creep_transient import run_transient
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces
 from rollcontact.cases.scene.scene import Scene

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from rollcontact.bem.errors import ConvergenceError
-from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import SteadyParams, SteadyRolling, solve_for_forces, solve_steady
@@ -19,12 +19,6 @@ from rollcontact.solver.normal import NormalParams, solve_normal
 
 #: Outer iterations (normal, then steady tangential) allowed for coupled materials.
 MAX_OUTER = 30
-
-
-def scene_operator(scene: Scene, grid) -> HalfSpaceOperator:
-    """The scene's half-space operator on `grid` ([solver] threads and coupling)."""
-    return HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
-                             coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
 
 
 def steady_state(scene: Scene):

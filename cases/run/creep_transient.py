@@ -26,7 +26,8 @@ import numpy as np
 
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
-from rollcontact.cases.run.creep_steady import scene_operator, steady_state
+from rollcontact.cases.run.creep_steady import steady_state
+from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces, rolling_frame_gap
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep.world import roll_world, rolling_steps

@@ -1,5 +1,6 @@
 """A scene made discrete: its load path (`scene_path`), the world-fixed grid just large enough for it
-(`scene_grid`) and the steps whose fields are stored (`field_steps`). Units: mm, N, MPa."""
+(`scene_grid`), the half-space operator on a grid (`scene_operator`) and the steps whose fields are stored
+(`field_steps`). Units: mm, N, MPa."""
 from __future__ import annotations
 
 import math
@@ -8,6 +9,7 @@ import numpy as np
 
 from rollcontact.bem.errors import InputError, SceneError
 from rollcontact.bem.grid import MAX_ELEMENTS, Grid, contact_box
+from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.schedule import LoadOscillation
 from rollcontact.solver.rolling.stepping import LoadPath, build_path
@@ -29,6 +31,12 @@ def scene_path(scene: Scene) -> LoadPath:
                       rolling_direction=scene.rolling_direction, amplitude=scene.amplitude,
                       max_step=scene.motion.dW, periods=scene.motion.periods, normal_force=ld.Fn,
                       oscillation=oscillation)
+
+
+def scene_operator(scene: Scene, grid: Grid) -> HalfSpaceOperator:
+    """The scene's half-space operator on `grid` ([solver] threads and coupling)."""
+    return HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
+                             coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
 
 
 def estimated(scene: Scene) -> bool:
