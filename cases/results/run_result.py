@@ -46,8 +46,11 @@ SUMMARY_UNITS = {
     "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
+    "speed": "mm/s", "step_time": "s",
 }
 #: dissipation_per_period: the frictional work of the last complete period (sum of /history/dissipation over it).
+#: speed: the scene's rolling speed (motion.speed or rolling.speed), step_time: the duration of every step (its
+#: displacement over the speed; Scene.step_time); both only in a scene with a speed.
 
 #: /subsurface: z (depths below the surface, mm), step (the stored steps), and per name a dataset of shape
 #: (snapshots, nz, ny, nx): the stress components in the frame (x, y, z = depth into the substrate), tension

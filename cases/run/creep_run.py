@@ -89,6 +89,8 @@ def _result(scene, grid, op, state, wall):
                    stick_fraction=float(steady.stick.sum() / steady.contact.sum()), a=a, b=b,
                    p0=float(np.max(normal.pressure)), nx=grid.nx, ny=grid.ny, elements=grid.size, steps=1,
                    steps_planned=1, iterations=int(history["iterations"][0]), wall_time=wall, fidelity="bem")
+    if scene.speed is not None:
+        summary["speed"] = scene.speed
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=fields, field_steps=stored, summary=summary, version=version())
 

@@ -89,6 +89,8 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
                    world_grid=world, nx=grid.nx, ny=grid.ny, elements=grid.size, steps=n + 1, steps_planned=n + 1,
                    iterations=int(history["iterations"].sum()), wall_time=wall, cpu_time=cpu,
                    time_per_step=float(history["wall_time"][1:].mean()), fidelity="bem")
+    if scene.speed is not None:
+        summary.update(speed=scene.speed, step_time=scene.step_time)
     out = {k: np.asarray(v) for k, v in fields.items()} if stored else {}
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=out, field_steps=np.asarray(stored, dtype=np.int64), summary=summary, version=version())

@@ -30,7 +30,7 @@ def scene_path(scene: Scene) -> LoadPath:
                       levels=[lv * mu_fn * e_f for lv in ld.levels],
                       rolling_direction=scene.rolling_direction, amplitude=scene.amplitude,
                       max_step=scene.motion.dW, periods=scene.motion.periods, normal_force=ld.Fn,
-                      oscillation=oscillation)
+                      oscillation=oscillation, step_time=scene.step_time)
 
 
 def scene_operator(scene: Scene, grid: Grid) -> HalfSpaceOperator:

@@ -46,6 +46,8 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     if n_done:
         summary["U_perp"] = float(U_perp[-1])
     summary["dissipation_per_period"] = dissipation_per_period(path.period, history)
+    if scene.speed is not None:
+        summary.update(speed=scene.speed, step_time=path.step_time)
     if state_label:
         summary["state"] = state_label
     elif path.period.max() == 0:

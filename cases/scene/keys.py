@@ -85,6 +85,9 @@ class Motion:
     dW: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                              doc="largest rolling step (default: the element size dx)")
     steps_per_period: int = _spec(24, 4, 100000, doc="steps of a period of oscillating loads without rolling (w = 0)")
+    speed: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm/s",
+                                doc="rolling speed; gives each step the time dt = dW_used / speed (at rest, w = 0: "
+                                    "dW / speed), loading steps included (default: none, time-independent)")
 
 
 @dataclass
@@ -115,6 +118,9 @@ class Rolling:
     initial: str | None = _spec(None, choices=("rest", "cattaneo"),
                                 doc="transient: initial state, 'rest' (Fn alone, zero tangential force; the default) "
                                     "or 'cattaneo' (then the tangential load of one step at rest)")
+    speed: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm/s",
+                                doc="rolling speed V; transient: each step takes dt = step / V; steady: slip velocity "
+                                    "= V x slip per unit rolled distance (default: none, time-independent)")
 
 
 @dataclass

@@ -1,6 +1,6 @@
 """Scenes: a TOML file <-> a `Scene` dataclass, validated key by key.
 
-Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
+Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contract, see README):
 
     [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate)
     [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry), or shape with its keys:
@@ -9,10 +9,10 @@ Units: mm, N, MPa, degrees. Sections and keys (public contract, see README):
                 ramp_steps (increments from 0 to Ft); levels (further f_t levels, each reached in
                 ramp_steps increments: unloading and reversal); ft_amplitude, fn_amplitude, phase,
                 cycles_per_period (loads oscillating within each period, docs/oscillating_loads.md)
-    [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW; steps_per_period
+    [motion]    w (= W/a) or W; angle (rolling direction relative to Ft); periods; dW; steps_per_period; speed (mm/s)
     [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction; distance, step
-                (mm) and initial ("rest", "cattaneo") of a transient: rolling on with creepage and spin, in
-                place of [motion] and a tangential load (Kalker's convention, solver.creep)
+                (mm) and initial ("rest", "cattaneo") of a transient; speed (mm/s): rolling on with creepage and
+                spin, in place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
@@ -389,6 +389,32 @@ class Scene(SceneLimits):
         """Step actually used, W/ceil(W/dW) (mm), so that the reversal points are hit exactly."""
         W = self.amplitude
         return W / math.ceil(W / self.motion.dW - 1e-9) if W > 0 else 0.0
+
+    @property
+    def speed(self) -> float | None:
+        """Rolling speed V (mm/s): [rolling] speed in a [rolling] scene, else [motion] speed; None without one
+        (the scene is time-independent)."""
+        return self.rolling.speed if self.rolling_on else self.motion.speed
+
+    @property
+    def step_time(self) -> float | None:
+        """Duration dt (s) of every step of a stepped run, None without a speed or in steady rolling (which has no
+        steps: the slip velocity is V times the slip per unit rolled distance).
+
+        A step's time is its displacement over the speed, as the reference program's dq / V: the rolling step
+        actually used, W/ceil(W/dW), in an oscillating scene; motion.dW (default dx) in a scene without rolling
+        (w = 0: shifts and loads at rest); [rolling] step (default dx) in a transient [rolling] scene. Every step
+        of the path takes dt, the loading steps included: step n ends at time n dt, step 0 (the normal load from
+        the unloaded state) at t = 0."""
+        V = self.speed
+        if V is None:
+            return None
+        if self.rolling_on:
+            if self.rolling.mode != "transient":
+                return None
+            return (self.rolling.step if self.rolling.step is not None else self.spacing[0]) / V
+        moving = self.amplitude > 0 and self.motion.periods > 0
+        return (self.rolling_step if moving else self.motion.dW) / V
 
     @property
     def load_direction(self) -> tuple[float, float]:

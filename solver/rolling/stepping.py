@@ -40,7 +40,8 @@ class LoadPath:
     """The prescribed sequence of steps: sphere centre (mm), tangential force (N), period index.
 
     period[n] = 0 during the loading phase and k during the k-th oscillation period; `reversal[n]` is
-    True at the reversal points (+W, -W) and at the end of each period.
+    True at the reversal points (+W, -W) and at the end of each period. `step_time` (s) is the duration of every
+    step of a scene rolled at a speed (time-dependent friction and materials): step n ends at time n step_time.
     """
 
     centres: np.ndarray      # (n, 2) mm
@@ -49,6 +50,7 @@ class LoadPath:
     reversal: np.ndarray     # (n,) bool
     dW: float = 0.0          # rolling step actually used (mm)
     normal_forces: np.ndarray | None = None   # (n,) N, Fn per step; None: the run's constant Fn
+    step_time: float | None = None   # s, duration of every step (step n ends at n step_time); None: no time
 
     @property
     def n_steps(self) -> int:
@@ -63,7 +65,8 @@ class LoadPath:
 
 
 def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), amplitude=0.0,
-               max_step=0.2, periods=0, normal_force=None, oscillation: LoadOscillation | None = None) -> LoadPath:
+               max_step=0.2, periods=0, normal_force=None, oscillation: LoadOscillation | None = None,
+               step_time=None) -> LoadPath:
     """Loading phase then oscillation (theory §6.1), with loads that may oscillate within each period (§11.2-11.3).
 
     force: final tangential force vector (N) of the ramp; levels: further force vectors (N), each reached
@@ -72,6 +75,7 @@ def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), 
     then the path carries Fn per step (`normal_forces`), the ramp goes to the schedule's start value, and without
     rolling (amplitude 0) a period has `oscillation.steps_per_period` steps at rest. Without an active
     oscillation the path is the constant-load path and `normal_forces` is None (the run's Fn).
+    step_time: the duration (s) of every step, None for a time-independent run (LoadPath.step_time).
     """
     if int(ramp_steps) < 1:
         raise InputError(f"load.ramp_steps = {ramp_steps}: must be an integer >= 1")
@@ -81,6 +85,8 @@ def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), 
         raise InputError(f"motion.dW = {max_step} mm: must be > 0")
     if int(periods) < 0:
         raise InputError(f"motion.periods = {periods}: must be >= 0")
+    if step_time is not None and not (math.isfinite(step_time) and step_time > 0):
+        raise InputError(f"step_time = {step_time!r} s: must be finite and > 0 (the step over motion.speed)")
     oscillating = oscillation is not None and oscillation.active
     if oscillating:
         if len(levels):
@@ -133,7 +139,8 @@ def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), 
         period.append(np.repeat(np.arange(1, periods + 1), k.size))
         reversal.append(np.tile(oscillation.reversals(k.size), periods))
     return LoadPath(np.concatenate(centres), np.concatenate(forces), np.concatenate(period),
-                    np.concatenate(reversal), dW, None if normal is None else np.concatenate(normal))
+                    np.concatenate(reversal), dW, None if normal is None else np.concatenate(normal),
+                    None if step_time is None else float(step_time))
 
 
 def _append_loads(oscillation, normal_force, mean_force, forces, normal, k, periods):
