@@ -46,11 +46,13 @@ SUMMARY_UNITS = {
     "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
-    "speed": "mm/s", "step_time": "s",
+    "speed": "mm/s", "step_time": "s", "rolling_grid": "-", "grid_extent": "-",
 }
 #: dissipation_per_period: the frictional work of the last complete period (sum of /history/dissipation over it).
 #: speed: the scene's rolling speed (motion.speed or rolling.speed), step_time: the duration of every step (its
 #: displacement over the speed; Scene.step_time); both only in a scene with a speed.
+#: rolling_grid: the grid of a [rolling] transient, 'contact' (moving with the contact) or 'world' (fixed to the
+#: substrate); grid_extent: its elements and extent in the rolling frame (text).
 
 #: /subsurface: z (depths below the surface, mm), step (the stored steps), and per name a dataset of shape
 #: (snapshots, nz, ny, nx): the stress components in the frame (x, y, z = depth into the substrate), tension
@@ -71,7 +73,8 @@ class RunResult:
 
     * `history[name]`: 1-D arrays, one value per finished step (names and units: HISTORY_UNITS), e.g.
       `history["U_x"]` (mm), `history["F_x"]` (N), `history["period"]` (0 = loading phase).
-    * `fields[name]`: arrays of shape (len(field_steps), ny, nx) on the world-fixed grid `x` (nx,), `y` (ny,) in mm
+    * `fields[name]`: arrays of shape (len(field_steps), ny, nx) on the grid `x` (nx,), `y` (ny,) in mm (world-fixed;
+      in a [rolling] transient with summary rolling_grid 'contact' the grid moving with the contact, x from its centre)
       (names and units: FIELD_UNITS); `field_steps` lists the stored steps (0-based). `field(name, step)` picks one.
       A run of the 1-D MDR model stores no fields; its `x` holds the spring positions.
     * `summary`: plain values (names and units: SUMMARY_UNITS), e.g. `summary["state"]` ('static', 'shakedown',

@@ -101,6 +101,7 @@ class Scene(SceneLimits):
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
         scene._resolve_resolution()
+        scene._check_transient_grid()
         if scene.shape == "file" and run_limits:
             check_file_coverage(scene)
         if run_limits:
@@ -238,7 +239,7 @@ class Scene(SceneLimits):
         if (ro.Fx is None) != (ro.Fy is None):
             raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
                              "give both, or the creepages xi and eta")
-        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", "")):
+        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", ""), ("grid", "")):
             if getattr(ro, key) is not None and ro.mode != "transient":
                 raise SceneError(f"[rolling] {key} = {getattr(ro, key)!r}{unit} with mode = {ro.mode!r}: {key} "
                                  "applies to mode = 'transient' only")
@@ -254,6 +255,32 @@ class Scene(SceneLimits):
         if self.solver.fidelity != "bem":
             raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
                              "boundary elements; allowed value is 'bem'")
+
+    @property
+    def transient_grid(self) -> str | None:
+        """The grid of a [rolling] transient: [rolling] grid, by default 'contact' (moving with the contact) when the
+        step (default dx) is a whole number of elements dx, else 'world'; None outside a transient."""
+        ro = self.rolling
+        if ro.mode != "transient":
+            return None
+        if ro.grid is not None:
+            return ro.grid
+        return "contact" if self._whole_steps() else "world"
+
+    def _whole_steps(self) -> bool:
+        """True when the transient's step is k >= 1 whole elements dx along the rolling direction (within 1e-9)."""
+        dx = self.spacing[0]
+        step = self.rolling.step if self.rolling.step is not None else dx
+        k = round(step / dx)
+        return k >= 1 and abs(step / dx - k) <= 1e-9 * max(1.0, step / dx)
+
+    def _check_transient_grid(self):
+        """[rolling] grid = 'contact' needs a step of whole elements (the grid moves by whole cells)."""
+        ro = self.rolling
+        if ro.mode == "transient" and ro.grid == "contact" and not self._whole_steps():
+            raise SceneError(f"[rolling] grid = 'contact' with step = {ro.step!r} mm = {ro.step / self.spacing[0]:.6g} "
+                             f"elements of dx = {self.spacing[0]!r} mm: the grid that moves with the contact needs a "
+                             "whole number of elements per step; set step = k dx, or grid = 'world'")
 
     def _check_consistency(self):
         ld, mo = self.load, self.motion
