@@ -50,9 +50,9 @@ from __future__ import annotations
 
 import math
 
-import numba as nb
 import numpy as np
 
+from rollcontact.bem.compiled import internal, kernel
 from rollcontact.bem.errors import InputError
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.operator import fft_length
@@ -71,7 +71,7 @@ _ROWS = {"s_xx": (0, 6, 11), "s_yy": (1, 7, 12), "s_zz": (2, 4, 3), "s_yz": (3, 
 ROWS = np.array([_ROWS[c] for c in COMPONENTS], dtype=np.int64)
 
 
-@nb.njit(cache=True, nogil=True)
+@internal
 def _log_plus(a, b, rho, rest2):
     """ln(a + rho) with rho^2 = a^2 + b^2 ... : rest2 = rho^2 - a^2 (> 0), written without cancellation for a < 0."""
     if a >= 0.0:
@@ -79,7 +79,7 @@ def _log_plus(a, b, rho, rest2):
     return math.log(rest2) - math.log(rho - a)
 
 
-@nb.njit(cache=True, nogil=True)
+@internal
 def _inv_plus(a, rho, rest2):
     """1/(a + rho), without cancellation for a < 0 (rest2 = rho^2 - a^2)."""
     if a >= 0.0:
@@ -87,7 +87,7 @@ def _inv_plus(a, rho, rest2):
     return (rho - a) / rest2
 
 
-@nb.njit(cache=True, nogil=True)
+@internal
 def _corners_at(X, Y, z, nu, out):
     """The 15 corner functions (divided by 4 pi) at one corner offset (X, Y) and depth z, into out[0:15]."""
     x2, y2, z2 = X * X, Y * Y, z * z
@@ -120,7 +120,7 @@ def _corners_at(X, Y, z, nu, out):
     out[14] = c * (2.0 * LY - 4.0 * nu * Y / s - 2.0 * zr * Y / s)
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(f8[::1], f8[::1], f8[::1], f8, f8, f8, f8[:, ::1])")
 def _element_kernels(X, Y, z, hx, hy, nu, out):
     """out[k, i] = [[C_k]] at the offsets (X[i], Y[i]) and depths z[i] of points from an element's centre."""
     f = np.empty(15)
@@ -148,7 +148,7 @@ def element_stresses(X, Y, z, dx, dy, nu, traction="p"):
     return {c: out[ROWS[m, column]].reshape(X.shape) for m, c in enumerate(COMPONENTS)}
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(i8, i8, f8, f8, f8, f8, f8[:, :, ::1])")
 def _wrapped_kernels(nx, ny, dx, dy, z, nu, out):
     """All 15 kernels at depth z on the padded domain in wrap-around order: out[k, oy mod Py, ox mod Px] =
     [[C_k]](ox dx, oy dy, z) for |ox| < nx, |oy| < ny (the rest of `out` is left as it is: zero). The corner
@@ -255,7 +255,7 @@ class SubsurfaceStresses:
         return out
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(c16[:, :, ::1], c16[:, :, ::1], i8[:, ::1], c16[:, :, ::1])")
 def _combine(kernel_spec, field_spec, rows, out):
     """out[m] = sum_t kernel_spec[rows[m, t]] * field_spec[t]: the spectral products of one layer."""
     for m in range(rows.shape[0]):
@@ -266,7 +266,7 @@ def _combine(kernel_spec, field_spec, rows, out):
                                 + kernel_spec[c, j, k] * field_spec[2, j, k])
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(f8[:, ::1], f8[::1], f8[::1], f8[::1])")
 def _invariants(s, vm, tresca, p1):
     """von Mises, max shear (s1 - s3)/2 and largest principal stress from (6, n) components (COMPONENTS order)."""
     for i in range(s.shape[1]):
