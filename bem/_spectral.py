@@ -5,7 +5,8 @@ and the Strang-circulant inverses built from them (preconditioners, `HalfSpaceOp
 real: each spectral value is scaled, not rotated.
 The complex spectra are passed as float64 views (re, im interleaved along the last axis), so a symbol
 value applies to two neighbouring entries. On the small grids of a preconditioner the numpy route (one
-ufunc call per block and a temporary) costs more in call overhead than in arithmetic.
+ufunc call per block and a temporary) costs more in call overhead than in arithmetic. `out` may be `spec` itself
+(the operator scales in place): each entry is read before it is written.
 """
 from rollcontact.bem.compiled import kernel
 

@@ -72,24 +72,23 @@ def _fft_pairs(ks, shape, threads, planner):
 
 
 class _FFTPair:
-    """Forward r2c and backward c2r plans for a batch of `k` padded fields, with their buffers."""
+    """Forward r2c (real_in -> spec) and backward c2r (spec -> real_out) plans for a batch of `k` padded fields, with
+    their buffers. One spectrum buffer serves both: a product scales it in place between the two transforms (the
+    backward transform may destroy it)."""
 
     def __init__(self, k, padded, threads, planner):
         py, px = padded
         self.real_in = pyfftw.zeros_aligned((k, py, px), dtype=np.float64)
         self.spec = pyfftw.empty_aligned((k, py, px // 2 + 1), dtype=np.complex128)
-        self.spec_out = pyfftw.empty_aligned((k, py, px // 2 + 1), dtype=np.complex128)
-        self.scratch = np.empty((py, px // 2 + 1), dtype=np.complex128)  # one product term
         self.real_out = pyfftw.empty_aligned((k, py, px), dtype=np.float64)
         flags = (planner,)
         self.forward = pyfftw.FFTW(self.real_in, self.spec, axes=(-2, -1), direction="FFTW_FORWARD",
                                    flags=flags, threads=threads)
-        self.backward = pyfftw.FFTW(self.spec_out, self.real_out, axes=(-2, -1),
+        self.backward = pyfftw.FFTW(self.spec, self.real_out, axes=(-2, -1),
                                     direction="FFTW_BACKWARD",
                                     flags=flags + ("FFTW_DESTROY_INPUT",), threads=threads)
         self.real_in[...] = 0.0  # planning with FFTW_MEASURE may have scribbled on the buffer
-        self.spec_f = self.spec.view(np.float64)          # (re, im) interleaved views for _spectral
-        self.spec_out_f = self.spec_out.view(np.float64)
+        self.spec_f = self.spec.view(np.float64)          # (re, im) interleaved view for _spectral
 
 
 class HalfSpaceOperator:
@@ -120,7 +119,7 @@ class HalfSpaceOperator:
         comps = ("zz", "xx", "yy", "xy") + (("xz", "yz") if self.coupled else ())
         kernels = self._kernels(comps)
         self.self_coefficients = {c: float(k[0, 0]) for c, k in kernels.items()}
-        self._fft = _fft_pairs((1, 2, 3), self.padded, self.threads, planner)
+        self._fft = _fft_pairs((1, 2), self.padded, self.threads, planner)
         scale = 1.0 / (self.padded[0] * self.padded[1])  # c2r is unnormalised: fold 1/N into spectra
         self.spectra = {}
         f1 = self._fft[1]
@@ -202,21 +201,28 @@ class HalfSpaceOperator:
 
     # --- application -----------------------------------------------------------------------------
     def _apply(self, fields, blocks, out, ffts=None):
-        """out[m] = sum_k conv(blocks[m, k], fields[k]); blocks: a stacked (m, k, Py, Px//2+1) spectrum array."""
+        """out[m] = sum_k conv(blocks[m, k], fields[k]); blocks: a stacked (m, k, Py, Px//2+1) spectrum array of the
+        coupling products, whose numbers of inputs and outputs differ (the outputs' spectra are formed in the other
+        pair's buffer)."""
         ffts = self._fft if ffts is None else ffts
         k, m = len(fields), len(blocks)
+        if k == m:
+            raise InputError(f"_apply: {k} fields to {m} outputs; equal numbers share a spectrum buffer")
         ny, nx = self.grid.shape
         fin = ffts[k]
         for i, f in enumerate(fields):
             fin.real_in[i, :ny, :nx] = f
         fin.forward.execute()
         fout = ffts[m]
+        scratch = None
         for j in range(m):  # spectral products without temporaries
-            acc = fout.spec_out[j]
+            acc = fout.spec[j]
             np.multiply(blocks[j, 0], fin.spec[0], out=acc)
             for i in range(1, k):
-                np.multiply(blocks[j, i], fin.spec[i], out=fin.scratch)
-                acc += fin.scratch
+                if scratch is None:
+                    scratch = np.empty_like(acc)
+                np.multiply(blocks[j, i], fin.spec[i], out=scratch)
+                acc += scratch
         fout.backward.execute()
         if out is None:
             out = np.empty((m, ny, nx))
@@ -257,10 +263,10 @@ class HalfSpaceOperator:
         for i, field in enumerate(fields):
             f.real_in[i, :ny, :nx] = field
         f.forward.execute()
-        if k == 1:
-            _spectral.scale_1(f.spec_f, y["zz"], f.spec_out_f)
+        if k == 1:                                   # in place: element by element
+            _spectral.scale_1(f.spec_f, y["zz"], f.spec_f)
         else:
-            _spectral.scale_2(f.spec_f, y["xx"], y["xy"], y["yy"], f.spec_out_f)
+            _spectral.scale_2(f.spec_f, y["xx"], y["xy"], y["yy"], f.spec_f)
         f.backward.execute()
         if out is None:
             out = np.empty((k, ny, nx))

@@ -148,27 +148,46 @@ def element_stresses(X, Y, z, dx, dy, nu, traction="p"):
     return {c: out[ROWS[m, column]].reshape(X.shape) for m, c in enumerate(COMPONENTS)}
 
 
-@kernel("void(i8, i8, f8, f8, f8, f8, f8[:, :, ::1])")
-def _wrapped_kernels(nx, ny, dx, dy, z, nu, out):
+def _parity(axis: str) -> np.ndarray:
+    """The sign of each of the 15 kernels under the mirror axis -> -axis: a stress component changes sign once for
+    each index along that axis, and the response to q_x (q_y) once more under x -> -x (y -> -y)."""
+    return np.array([(-1.0) ** (component[2:].count(axis) + (load == "q_" + axis)) for load, component in KERNELS])
+
+
+#: signs of the kernels under x -> -x and y -> -y (element kernels of a centred element: exact mirror symmetries)
+PARITY_X, PARITY_Y = _parity("x"), _parity("y")
+
+
+@kernel("void(i8, i8, f8, f8, f8, f8, f8[::1], f8[::1], f8[:, :, ::1])")
+def _wrapped_kernels(nx, ny, dx, dy, z, nu, sign_x, sign_y, out):
     """All 15 kernels at depth z on the padded domain in wrap-around order: out[k, oy mod Py, ox mod Px] =
-    [[C_k]](ox dx, oy dy, z) for |ox| < nx, |oy| < ny (the rest of `out` is left as it is: zero). The corner
-    functions are evaluated once per corner of the (2 nx) x (2 ny) corner lattice, a row at a time."""
+    [[C_k]](ox dx, oy dy, z) for |ox| < nx, |oy| < ny (the rest of `out` is left as it is: zero). The quadrant
+    ox, oy >= 0 is evaluated, its corner functions once per corner of the (nx + 1) x (ny + 1) lattice at
+    ((ic - 1/2) dx, (jc - 1/2) dy), a row at a time; the other three quadrants are its mirror images with the signs
+    sign_x, sign_y of each kernel (PARITY_X, PARITY_Y)."""
     py, px = out.shape[1], out.shape[2]
-    prev = np.empty((2 * nx, 15))
-    cur = np.empty((2 * nx, 15))
+    prev = np.empty((nx + 1, 15))
+    cur = np.empty((nx + 1, 15))
     f = np.empty(15)
-    for jc in range(2 * ny):
-        Yc = (jc - ny + 0.5) * dy
-        for ic in range(2 * nx):
-            _corners_at((ic - nx + 0.5) * dx, Yc, z, nu, f)
+    for jc in range(ny + 1):
+        Yc = (jc - 0.5) * dy
+        for ic in range(nx + 1):
+            _corners_at((ic - 0.5) * dx, Yc, z, nu, f)
             for k in range(15):
                 cur[ic, k] = f[k]
         if jc > 0:
-            row = (jc - ny) % py          # offset oy = jc - 1 - (ny - 1)
-            for ic in range(1, 2 * nx):
-                col = (ic - nx) % px
+            oy = jc - 1
+            for ic in range(1, nx + 1):
+                ox = ic - 1
                 for k in range(15):
-                    out[k, row, col] = cur[ic, k] - cur[ic - 1, k] - prev[ic, k] + prev[ic - 1, k]
+                    v = cur[ic, k] - cur[ic - 1, k] - prev[ic, k] + prev[ic - 1, k]
+                    out[k, oy, ox] = v
+                    if ox > 0:
+                        out[k, oy, px - ox] = sign_x[k] * v
+                    if oy > 0:
+                        out[k, py - oy, ox] = sign_y[k] * v
+                        if ox > 0:
+                            out[k, py - oy, px - ox] = sign_x[k] * sign_y[k] * v
         prev, cur = cur, prev
 
 
@@ -240,7 +259,7 @@ class SubsurfaceStresses:
         spectra = self._kept.get(z)
         if spectra is None:
             if self._kernel_z != z:        # the kernels depend on z alone: kept for the next tractions at this depth
-                _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, z, self.nu, self._kernels)
+                _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, z, self.nu, PARITY_X, PARITY_Y, self._kernels)
                 self._fft_kernels.execute()
                 self._kernel_z = z
                 if (len(self._kept) + 1) * self._kernel_spec.nbytes <= self._kept_bytes:

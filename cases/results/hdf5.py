@@ -30,6 +30,7 @@ import h5py
 import numpy as np
 
 from rollcontact.cases.results.run_result import UNITS, RunResult
+from rollcontact.cases.results.snapshots import SnapshotStack
 
 #: deflate level of the field snapshots (h5py's default for gzip)
 GZIP_LEVEL = 4
@@ -191,20 +192,24 @@ def _write_fields(group, data: RunResult, chunks: dict, growable: bool):
     steps = np.asarray(data.field_steps, dtype=np.int64)
     _dataset(group, "step", steps, **(dict(maxshape=(None,), chunks=(HISTORY_CHUNK,)) if growable else {}))
     for name, values in data.fields.items():
-        values = np.asarray(values)
+        compressed = chunks.get(name)
+        if isinstance(values, SnapshotStack):      # snapshots held as their chunks: written as they are
+            compressed = values.chunks
+        elif not isinstance(values, np.ndarray):
+            values = np.asarray(values)
         if values.ndim != 3 or (values.shape[0] == 0 and not growable):
-            _dataset(group, name, values)
+            _dataset(group, name, np.asarray(values))
             continue
         shape = (1,) + values.shape[1:]
         options = dict(chunks=shape, compression="gzip", compression_opts=GZIP_LEVEL)
         if growable:
             options["maxshape"] = (None,) + values.shape[1:]
-        if name in chunks and len(chunks[name]) == values.shape[0]:
+        if compressed is not None and len(compressed) == values.shape[0]:
             ds = _dataset(group, name, None, shape=values.shape, dtype=values.dtype, **options)
-            for i, chunk in enumerate(chunks[name]):
+            for i, chunk in enumerate(compressed):
                 ds.id.write_direct_chunk((i, 0, 0), chunk)
         else:
-            _dataset(group, name, values, **options)
+            _dataset(group, name, np.asarray(values), **options)
 
 
 def read_run_file(path, error, label) -> RunResult:

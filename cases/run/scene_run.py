@@ -34,11 +34,7 @@ from rollcontact.cases.results.hdf5 import is_complete, stored_summary, wait_for
 from rollcontact.cases.results.lock import OutputLock
 from rollcontact.cases.results.outputs import free_name
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
-from rollcontact.cases.run.bem_run import run_bem
 from rollcontact.cases.run.checkpoint import Checkpoints
-from rollcontact.cases.run.creep_run import run_creep
-from rollcontact.cases.run.mdr_run import run_mdr
-from rollcontact.cases.run.step_stresses import StepStresses
 from rollcontact.cases.scene.scene import Scene
 
 
@@ -71,7 +67,10 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
         for path in (out, target):
             remove_stale_temporaries(path)
         checkpoints = Checkpoints(target, attrs) if scene.solver.fidelity == "bem" and not scene.rolling_on else None
-        stepwise = StepStresses(scene, target, depths, restart, progress) if stresses else None
+        stepwise = None
+        if stresses:
+            from rollcontact.cases.run.step_stresses import StepStresses
+            stepwise = StepStresses(scene, target, depths, restart, progress)
         try:
             result = _run_model(scene, progress, restart, checkpoints, stepwise)
         except RunInterrupted as exc:
@@ -91,12 +90,16 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
 
 
 def _run_model(scene, progress, restart, checkpoints, stresses) -> RunResult:
+    """The scene's model; each imported when it runs (a process loads only the model it uses)."""
     if scene.rolling_on:
         if restart is not None:
             raise InputError("--restart: a [rolling] scene is solved in one step; there is nothing to restart")
+        from rollcontact.cases.run.creep_run import run_creep
         return run_creep(scene, progress=progress)
     if scene.solver.fidelity == "mdr":
+        from rollcontact.cases.run.mdr_run import run_mdr
         return run_mdr(scene, progress=progress)
+    from rollcontact.cases.run.bem_run import run_bem
     return run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints, stresses=stresses)
 
 

@@ -5,7 +5,6 @@ CLI's SIGTERM handler sets (cases.sweep.runner, cases.sweep.limit_search).
 All three pools have the same small interface: submit(fn, *args) -> future, as_completed(futures), stop()
 (cancel and terminate: the unfinished runs are redone on resume), close().
 """
-import multiprocessing
 import os
 import re
 import signal
@@ -56,6 +55,7 @@ class _LocalPool:
 
     def __init__(self, jobs):
         from concurrent.futures import ProcessPoolExecutor
+        import multiprocessing
         methods = multiprocessing.get_all_start_methods()
         ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
         if ctx.get_start_method() == "forkserver":
