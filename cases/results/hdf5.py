@@ -32,8 +32,9 @@ import numpy as np
 from rollcontact.cases.results.run_result import UNITS, RunResult
 from rollcontact.cases.results.snapshots import SnapshotStack
 
-#: deflate level of the field snapshots (h5py's default for gzip)
-GZIP_LEVEL = 4
+#: deflate level of the field snapshots: level 1 compresses them as well as h5py's default 4 (within 1 %: they are
+#: mostly zeros outside the contact) in three quarters of the time
+GZIP_LEVEL = 1
 #: chunk length of the growable history datasets of a checkpointed run
 HISTORY_CHUNK = 256
 
@@ -184,7 +185,7 @@ def write_summary_attrs(attrs, summary: dict, stored: dict | None = None):
 
 
 def compress_snapshot(values: np.ndarray) -> bytes:
-    """One (ny, nx) snapshot as the gzip chunk `write_run` stores (deflate level 4, h5py's default)."""
+    """One (ny, nx) snapshot as the gzip chunk `write_run` stores (deflate level GZIP_LEVEL)."""
     return zlib.compress(np.ascontiguousarray(values).tobytes(), GZIP_LEVEL)
 
 
