@@ -25,7 +25,8 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
-                       coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None):
+                       coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None,
+                       normal=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -48,6 +49,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     extra_slip : (2, ny, nx) mm, a given slip of the step added to the tangential problem's (solve_tangential's
         `extra_slip`), e.g. the rigid creep slip of a rolling step (solver.creep.world); it is not part of the
         returned `displacement`.
+    normal : a NormalResult of this profile and Fn solved before, taken as the normal solution (uncoupled materials
+        only, whose normal problem does not depend on the tractions; ignored when coupled).
 
     Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
     with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
@@ -70,7 +73,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
         raise InputError("solve_coupled_step: give exactly one of F = (Fx, Fy) N or shift = (dUx, dUy) mm")
     given = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
     if not op.coupled:
-        normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
+        if normal is None:
+            normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
                                 params=tangential_params)
         if given is not None:
