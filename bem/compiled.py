@@ -329,6 +329,8 @@ def _prune(layer: str):
                        key=lambda p: p.stat().st_mtime, reverse=True)
         for old in found[KEEP:]:
             old.unlink(missing_ok=True)
+            if old.suffix != ".failed":
+                old.with_suffix(".lock").unlink(missing_ok=True)
     except OSError:
         pass
 

@@ -120,7 +120,7 @@ class Rolling:
                                  "x from its centre; the previous step's tractions carried by the step, which must "
                                  "be a whole number of elements dx) or 'world' (fixed to the substrate, covering the "
                                  "distance rolled; any step); default 'contact' when the step is whole elements, "
-                                 "else 'world' (docs/transient_rolling.md)")
+                                 "else 'world' (docs/creep_rolling.md)")
     initial: str | None = _spec(None, choices=("rest", "cattaneo"),
                                 doc="transient: initial state, 'rest' (Fn alone, zero tangential force; the default) "
                                     "or 'cattaneo' (then the tangential load of one step at rest)")

@@ -59,8 +59,8 @@ class _LocalPool:
         methods = multiprocessing.get_all_start_methods()
         ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
         if ctx.get_start_method() == "forkserver":
-            ctx.set_forkserver_preload(["rollcontact.cases.run.scene_run", "rollcontact.cases.sweep.runner",
-                                        "rollcontact.cases.sweep.limit_search"])
+            ctx.set_forkserver_preload(["rollcontact.cases.run.scene_run", "rollcontact.cases.run.bem_run",
+                                        "rollcontact.cases.sweep.runner", "rollcontact.cases.sweep.limit_search"])
         self.executor = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init,
                                             initargs=(os.getpid(),))
 
