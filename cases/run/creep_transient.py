@@ -11,8 +11,8 @@ a_r, b_r the Hertz contact's half-extents in the rolling frame (10 % allowance f
 The contact centre moves by [rolling] step (default dx) per step.
 
 What is stored: /history one row per step, step 0 the initial state (at rest), with the usual names (W_x, W_y the
-contact centre's travel from its start along the rolling direction and across it, mm; U_x, U_y the accumulated rigid slip of the sphere relative to the substrate,
-sum of step (xi, eta), mm; F_x, F_y the force on the substrate, N; stick_area; iterations: FFT products of the step)
+contact centre's travel from its start, along the rolling direction and across it, mm; U_x, U_y the accumulated rigid
+slip of the sphere relative to the substrate, sum of step (xi, eta), mm; F_x, F_y the force on the substrate, N; stick_area; iterations: FFT products of the step)
 and M_z (N mm, on the sphere, about the contact centre), xi, eta (the creepages of the step: prescribed, or found
 for prescribed forces); /fields the snapshots of the stored steps on the run's grid (output.fields: 'reversals',
 the default, stores the initial state, each further contact length 2a rolled and the last step; 'all', 'last',
@@ -72,8 +72,8 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
     keep = _stored_steps(scene.output.fields, n, math.ceil(2.0 * scene.rolling_half_length / step - 1e-9))
     rows, fields, stored = [], {k: [] for k in FIELDS}, []
     for rec in roll(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
-                          distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
-                          phi=phi, forces=forces, initial=ro.initial or "rest", params=params):
+                    distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
+                    phi=phi, forces=forces, initial=ro.initial or "rest", params=params):
         rows.append(_row(rec, grid))
         if rec.step in keep:
             stored.append(rec.step)

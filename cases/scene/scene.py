@@ -268,7 +268,8 @@ class Scene(SceneLimits):
         return "contact" if self._whole_steps() else "world"
 
     def _whole_steps(self) -> bool:
-        """True when the transient's step is k >= 1 whole elements dx along the rolling direction (within 1e-9)."""
+        """True when the transient's step is k >= 1 whole elements dx along the rolling direction (within 1e-9, as
+        solver.creep.moving.whole_cells, which the grid moving with the contact needs)."""
         dx = self.spacing[0]
         step = self.rolling.step if self.rolling.step is not None else dx
         k = round(step / dx)
