@@ -152,9 +152,12 @@ def compare(a_path, b_path) -> dict:
     for name, x in list(a.items()) + list(b.items()):
         if x.dtype.kind in "fi":
             scale[name] = max(scale.get(name, 0.0), float(np.abs(x).max()) if x.size else 0.0)
-    same, differ = 0, {}
+    same, differ, counts = 0, {}, {}
     for name in sorted(set(a) | set(b)):
         if name.rsplit("/", 1)[-1] in SKIP:
+            continue
+        if name.endswith("iterations"):             # the work done, not the result
+            counts[name] = int(np.abs(a[name].sum() - b[name].sum())) if name in a and name in b else None
             continue
         if name not in a or name not in b or a[name].shape != b[name].shape:
             differ[name] = "missing or reshaped"
@@ -166,7 +169,29 @@ def compare(a_path, b_path) -> dict:
         family = next((f for f in FAMILIES if leaf in f), (leaf,))
         s = max(scale.get(f"{group}/{m}" if group else m, 0.0) for m in family) or 1.0
         differ[name] = float(np.abs(a[name].astype(float) - b[name].astype(float)).max() / s)
-    return {"identical": same, "differ": differ}
+    with h5py.File(a_path, "r") as fa, h5py.File(b_path, "r") as fb:
+        summary = _summary_differences(dict(fa["summary"].attrs), dict(fb["summary"].attrs))
+        totals = [(float(f["history/iterations"][()].sum()) if "history/iterations" in f else None) for f in (fa, fb)]
+    return {"identical": same, "differ": differ, "summary": summary, "iteration_totals": totals}
+
+
+def _summary_differences(a: dict, b: dict) -> dict:
+    """Summary values that differ: relative difference of numbers (times and iteration counts left out, and values
+    that are zero to round-off in both, below 1e-12 in their unit), or both texts."""
+    import numpy as np
+    out = {}
+    for key in sorted(set(a) & set(b)):
+        if "time" in key or "iterations" in key:
+            continue
+        x, y = a[key], b[key]
+        if isinstance(x, (bytes, str)) or isinstance(y, (bytes, str)):
+            if x != y:
+                out[key] = [str(x), str(y)]
+        elif np.size(x) == 1 and np.size(y) == 1:
+            x, y = float(np.asarray(x)), float(np.asarray(y))
+            if not (x == y or (np.isnan(x) and np.isnan(y)) or max(abs(x), abs(y)) < 1e-12):
+                out[key] = abs(x - y) / max(abs(x), abs(y), 1e-300)
+    return out
 
 
 def transient_forces(contact_file, world_file) -> dict:
@@ -269,8 +294,13 @@ def main(argv=None):
         result["outputs"] = outputs
         for name, c in outputs.items():
             worst = max((v for v in c["differ"].values() if isinstance(v, float)), default=0.0)
+            texts = {k: v for k, v in c["summary"].items() if isinstance(v, list)}
+            numbers = max((v for v in c["summary"].values() if isinstance(v, float)), default=0.0)
             print(f"outputs, {name}: {c['identical']} datasets identical, {len(c['differ'])} differ (largest "
-                  f"{worst:.2g} of the quantity's largest value)", flush=True)
+                  f"{worst:.2g} of the quantity's largest value); summary numbers within {numbers:.2g} relative"
+                  + (f", texts differ: {texts}" if texts else ", texts equal")
+                  + f"; FFT products {c['iteration_totals'][0]:.0f} against {c['iteration_totals'][1]:.0f}",
+                  flush=True)
     result["load_after"] = os.getloadavg()[0]
     folder = Path(args.out)
     folder.mkdir(parents=True, exist_ok=True)
