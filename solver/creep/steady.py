@@ -85,7 +85,11 @@ class SteadyRolling:
     (3 arrays of (2 ny - 1) x (2 nx - 1) floats), built once and shared by every solve on that grid, and the
     operator whose FFTW plans apply them to a whole field (`operator`: a bem HalfSpaceOperator of the same grid and
     materials to share, else one of its own). coupled: include the tangential displacement of the pressure
-    (Kalker's K; default: when K != 0)."""
+    (Kalker's K; default: when K != 0). with_flow: each row is swept from the leading edge (True: for operators with
+    memory, solver.visco) or from the trailing edge (False, Kalker's order: 33 against 42 sweeps on a Hertz contact at
+    a/dx = 12)."""
+
+    with_flow = False
 
     def __init__(self, grid: Grid, materials: MaterialPair, coupled: bool | None = None,
                  operator: HalfSpaceOperator | None = None):
@@ -192,7 +196,7 @@ def _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega):
     for j in rows:
         start = dp[:, j].copy()
         change = max(change, _sweep.row_sweep(j, rigid, tau, dp, status, bound, disp, row_xx, row_yy, inv_dx,
-                                               lo[j], hi[j], start, omega))
+                                               lo[j], hi[j], start, omega, problem.with_flow))
         if j < last:
             problem.row_influence.add(disp, j, dp[:, j] - start, slice(int(j) + 1, last + 1))
     problem.displacement(dp, out=disp)
