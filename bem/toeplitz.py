@@ -16,7 +16,7 @@ import numpy as np
 
 from rollcontact.bem.errors import InputError
 from rollcontact.bem.grid import Grid
-from rollcontact.bem.operator import PRECONDITIONER_FLOOR, _fft_pairs, fft_length, smooth_length
+from rollcontact.bem.operator import PRECONDITIONER_FLOOR, fft_pairs, fft_length, smooth_length
 
 REQUIRED = ("zz", "xx", "yy", "xy")
 COUPLING = ("xz", "yz")
@@ -41,7 +41,7 @@ class ToeplitzOperator:
         self.kernels = {c: np.asarray(k, dtype=float) for c, k in kernels.items()}
         self.self_coefficients = {c: float(k[ny - 1, nx - 1]) for c, k in self.kernels.items()}
         self.padded = (fft_length(2 * ny - 1), fft_length(2 * nx - 1))
-        self._fft = _fft_pairs((1, 2, 3), self.padded, self.threads, planner)
+        self._fft = fft_pairs((1, 2, 3), self.padded, self.threads, planner)
         py, px = self.padded
         rows, cols = np.ix_(np.arange(-(ny - 1), ny) % py, np.arange(-(nx - 1), nx) % px)
         f1 = self._fft[1]
@@ -74,7 +74,7 @@ class ToeplitzOperator:
         floor = PRECONDITIONER_FLOOR * self.self_coefficients["zz"]
         s = np.maximum(s.real, floor) + 1j * s.imag
         self._inverse = np.array([[1.0 / (s * (sy * sx))]])
-        self._fft_small = _fft_pairs((1,), self.small, self.threads, planner)
+        self._fft_small = fft_pairs((1,), self.small, self.threads, planner)
 
     def _apply(self, fields, blocks, out, ffts=None):
         """out[m] = sum_k conv(blocks[m, k], fields[k]) (complex spectra)."""

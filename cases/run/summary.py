@@ -10,6 +10,7 @@ import numpy as np
 
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
+from rollcontact.cases.run.viscoelastic import viscous_per_period
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.shakedown import SETTLED_STATES, classify, cyclic_slip
 from rollcontact.solver.rolling.stepping import LoadPath
@@ -46,6 +47,10 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     if n_done:
         summary["U_perp"] = float(U_perp[-1])
     summary["dissipation_per_period"] = dissipation_per_period(path.period, history)
+    if scene.viscoelastic and n_done:     # docs/viscoelastic.md; cases.run.viscoelastic
+        xc = float(history["pressure_centroid_x"][-1])
+        summary.update(pressure_centroid_x=xc, rolling_resistance_moment=float(history["Fn"][-1]) * xc,
+                       viscous_dissipation_per_period=viscous_per_period(path.period, history))
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=path.step_time)
     if state_label:

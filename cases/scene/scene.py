@@ -2,7 +2,8 @@
 
 Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contract, see README):
 
-    [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate)
+    [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate); visco1, visco2 ("none", "sls"),
+                E1_relaxed, E2_relaxed, tau1, tau2 (s): Standard Linear Solid bodies, E<i> their glassy modulus
     [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry), or shape with its keys:
                 cone (slope), power (n, R), flat_rounded (b, R) (cases.scene.geometry)
     [load]      Fn; mu; ft (= Ft/(mu Fn)) or Ft; load_angle (direction of Ft from the x axis);
@@ -36,7 +37,7 @@ import tomllib
 from importlib import resources
 
 from rollcontact.bem.errors import SceneError
-from rollcontact.bem.materials import MaterialPair
+from rollcontact.bem.materials import Material, MaterialPair
 from rollcontact.cases.scene.geometry import (
     SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
@@ -44,6 +45,7 @@ from rollcontact.cases.scene.keys import (
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
+from rollcontact.solver.visco.sls import StandardLinearSolid
 
 #: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
 ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"), ("xi", "Fx"), ("eta", "Fy"))
@@ -97,6 +99,7 @@ class Scene(SceneLimits):
         scene = cls(**parts, name=name)
         scene._check_rolling(data)
         scene._check_consistency()
+        scene._check_visco()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
@@ -303,11 +306,75 @@ class Scene(SceneLimits):
                 f"mu Fn during the cycle (gross sliding; at the smallest Fn, Fn (1 - fn_amplitude), when ft is "
                 f"large); allowed range is {allowed} at this ft and fn_amplitude (|Ft| < mu Fn at every phase)")
 
+    def _check_visco(self):
+        """A viscoelastic body (materials.visco<i> = 'sls', docs/viscoelastic.md) has a finite glassy modulus E<i>, a
+        relaxed modulus below it and a relaxation time, and its scene a speed and the boundary elements; an elastic
+        body takes no relaxed modulus or relaxation time. Refused with the key named, before any work."""
+        m = self.materials
+        for i in (1, 2):
+            visco, E = getattr(m, f"visco{i}"), getattr(m, f"E{i}")
+            relaxed, tau = getattr(m, f"E{i}_relaxed"), getattr(m, f"tau{i}")
+            if visco != "sls":
+                for key, value in ((f"E{i}_relaxed", relaxed), (f"tau{i}", tau)):
+                    if value is not None:
+                        raise SceneError(f"[materials] {key} = {value!r} for an elastic body (visco{i} left out or "
+                                         f"'none'): a relaxed modulus and a relaxation time belong to a viscoelastic "
+                                         f"body; set materials.visco{i} = 'sls' or remove materials.{key}")
+                continue
+            for key, value, unit in ((f"E{i}_relaxed", relaxed, "MPa"), (f"tau{i}", tau, "s")):
+                if value is None:
+                    raise SceneError(f"[materials] visco{i} = 'sls' needs materials.{key} ({unit}): the standard linear "
+                                     f"solid's {'relaxed modulus' if unit == 'MPa' else 'creep relaxation time'}")
+            if math.isinf(E):
+                raise SceneError(f"[materials] E{i} = inf with visco{i} = 'sls': a rigid body cannot be viscoelastic; "
+                                 f"give the glassy (instantaneous) modulus as E{i} (MPa)")
+            if not relaxed < E:
+                raise SceneError(f"[materials] E{i}_relaxed = {relaxed!r} MPa with E{i} = {E!r} MPa: allowed range is "
+                                 f"(0, {E!r}) MPa (the relaxed modulus below the glassy one, E{i})")
+        if not self.viscoelastic:
+            return
+        keys = [f"materials.visco{i}" for i in (1, 2) if getattr(m, f"visco{i}") == "sls"]
+        if self.speed is None:
+            where = "[rolling] speed" if self.rolling_on else "[motion] speed"
+            raise SceneError(f"{', '.join(keys)} = 'sls' without a speed: a viscoelastic body needs the rolling speed "
+                             f"(mm/s, > 0) that gives its steps their time; set {where.replace('[', '').replace('] ', '.')}")
+        if self.solver.fidelity != "bem":
+            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with {', '.join(keys)} = 'sls': the MDR "
+                             "model has no viscoelastic bodies; allowed value is 'bem'")
+
     # --- derived quantities ----------------------------------------------------------------------
     @property
-    def material_pair(self) -> MaterialPair:
+    def viscoelastic(self) -> bool:
+        """True when a body is a Standard Linear Solid (materials.visco1 or visco2 = 'sls')."""
+        return "sls" in (self.materials.visco1, self.materials.visco2)
+
+    @property
+    def bodies(self) -> tuple:
+        """(sphere, substrate): each a bem Material, or a solver.visco StandardLinearSolid for visco<i> = 'sls'."""
         m = self.materials
-        return MaterialPair.from_moduli(m.E1, m.nu1, m.E2, m.nu2)
+        out = []
+        for i in (1, 2):
+            E, nu = getattr(m, f"E{i}"), getattr(m, f"nu{i}")
+            if getattr(m, f"visco{i}") == "sls":
+                out.append(StandardLinearSolid(E, getattr(m, f"E{i}_relaxed"), getattr(m, f"tau{i}"), nu))
+            else:
+                out.append(Material(E, nu))
+        return tuple(out)
+
+    @property
+    def sls_bodies(self) -> dict:
+        """{body index: StandardLinearSolid} of the viscoelastic bodies (empty for an elastic scene)."""
+        return {i: b for i, b in enumerate(self.bodies, start=1) if isinstance(b, StandardLinearSolid)}
+
+    @property
+    def material_pair(self) -> MaterialPair:
+        """The elastic pair; a viscoelastic body with its relaxed modulus (the long-time, quasi-static limit: the
+        normalisations a, d, p0, U0, the default grid and the grid's extent, which covers the largest contact, follow
+        it). The solvers get the effective pair of the step time (solver.visco.sls.effective_pair)."""
+        m = self.materials
+        E1 = m.E1_relaxed if m.visco1 == "sls" else m.E1
+        E2 = m.E2_relaxed if m.visco2 == "sls" else m.E2
+        return MaterialPair.from_moduli(E1, m.nu1, E2, m.nu2)
 
     @property
     def shape(self) -> str:
