@@ -40,6 +40,8 @@ from rollcontact.solver.creep import _sweep
 #: across, C23 with the contact-area error divided out (c^3 -> (cells in contact dA / pi)^1.5): -3.4 / -2.2 /
 #: -1.3 / -1.05 % at offset 0 (first order from below), +0.6 / +0.2 / +0.1 / -0.0 % at 1/6, +3 % at 1/2.
 SPIN_OFFSET = 1.0 / 6.0
+#: Sweeps over which `stalled` compares the traction changes.
+STALL_WINDOW = 20
 
 
 @dataclass(frozen=True)
@@ -87,7 +89,8 @@ class SteadyRolling:
     materials to share, else one of its own). coupled: include the tangential displacement of the pressure
     (Kalker's K; default: when K != 0). with_flow: each row is swept from the leading edge (True: for operators with
     memory, solver.visco) or from the trailing edge (False, Kalker's order: 33 against 42 sweeps on a Hertz contact at
-    a/dx = 12)."""
+    a/dx = 12). A solve that starts with the flow and stalls (`stalled`: the sweeps cycle, as on a one-row strip)
+    goes on in Kalker's order."""
 
     with_flow = False
 
@@ -171,11 +174,15 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
     inv_dx = 1.0 / grid.dx
     scale = float(np.max(bound[contact])) if math.isfinite(mu) else None
     change = math.inf
+    with_flow, changes = problem.with_flow, []
     for sweeps in range(1, params.max_sweeps + 1):
-        change = _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, params.omega)
+        change = _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, params.omega, with_flow)
         ref = scale if scale is not None else max(float(np.max(np.hypot(tau[0], tau[1]))), 1e-300)
         if change <= params.tol * ref:
             break
+        changes.append(change / ref)
+        if with_flow and stalled(changes):
+            with_flow = False            # sweeping with the flow cycles (seen on one-row strips): Kalker's order
     else:
         raise ConvergenceError("steady rolling Gauss-Seidel did not converge", solver="solve_steady",
                                iterations=params.max_sweeps, residual=change / ref, tol=params.tol,
@@ -183,7 +190,14 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
     return _result(problem, tau, rigid, contact, bound, sweeps, change, (xi, eta, phi))
 
 
-def _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega):
+def stalled(changes, window=STALL_WINDOW) -> bool:
+    """True when the largest traction change of the last `window` sweeps has not fallen below half of that of the
+    `window` sweeps before (checked every `window` sweeps): a sweep order that cycles instead of converging."""
+    n = len(changes)
+    return n >= 2 * window and n % window == 0 and min(changes[-window:]) >= 0.5 * min(changes[-2 * window:-window])
+
+
+def _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega, with_flow=False):
     """One Gauss-Seidel sweep over the contact rows (`_sweep.row_sweep`), in increasing y. Each row's change of dp
     is carried to the rows still to come in this sweep (1-D FFTs, `bem.rows`), so that every element sees the
     latest state: an exact element Gauss-Seidel. The rows already done get it at the end of the sweep, when
@@ -196,7 +210,7 @@ def _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega):
     for j in rows:
         start = dp[:, j].copy()
         change = max(change, _sweep.row_sweep(j, rigid, tau, dp, status, bound, disp, row_xx, row_yy, inv_dx,
-                                               lo[j], hi[j], start, omega, problem.with_flow))
+                                               lo[j], hi[j], start, omega, with_flow))
         if j < last:
             problem.row_influence.add(disp, j, dp[:, j] - start, slice(int(j) + 1, last + 1))
     problem.displacement(dp, out=disp)
