@@ -14,13 +14,17 @@ rolls in +x. Units: mm, N, MPa, s, W.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from rollcontact.bem.materials import Material, MaterialPair
 from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.bem.rows import RowInfluence
 from rollcontact.bem.toeplitz import ToeplitzOperator
 from rollcontact.solver.creep.steady import SteadyRolling
 from rollcontact.solver.normal import NormalParams, solve_normal
+from rollcontact.solver.visco.memory import dot
 from rollcontact.solver.visco.normal_steady import solve_normal_steady
 from rollcontact.solver.visco.sls import StandardLinearSolid, effective_pair, history_pair
 from rollcontact.solver.visco.steady_kernels import influence, steady_kernels, tail_kernels
@@ -74,17 +78,45 @@ class SteadyVisco:
 
     def solve_normal(self, profile, force, *, initial=None, extra_displacement=None, params=NormalParams()):
         """The steady normal problem (`normal_steady.solve_normal_steady`), its contact set started from `initial`
-        or from the effective elastic pair's contact (NormCG); the products of both are counted."""
-        start = initial
-        products = 0
-        if start is None:
-            elastic = solve_normal(self.elastic, profile, force=force, extra_displacement=extra_displacement,
-                                   params=params)
-            start, products = elastic.pressure, elastic.iterations
+        or from `contact_estimate`; the products of both are counted."""
+        start, products = (initial, 0) if initial is not None else \
+            self.contact_estimate(profile, force, extra_displacement, params)
         result = solve_normal_steady(self.operator, profile, force=force, initial=start,
                                      extra_displacement=extra_displacement, params=params)
         result.iterations += products
         return result
+
+    def contact_estimate(self, profile, force, extra_displacement=None, params=NormalParams()):
+        """(pressure, products): an elastic contact whose support starts the steady problem's active set. Each
+        viscoelastic body gets the creep compliance averaged over the time 2 a / V its material spends in the contact,
+        C_g + (C_r - C_g)(1 - (ell / 2a)(1 - exp(-2a/ell))), ell = V tau, with a the half-length along x of the
+        relaxed contact. Both elastic contacts are solved on the effective pair's operator: a pair whose compliances
+        all scale by one factor has the same contact at the force scaled by it (exact for one compliant body or
+        proportional ones; an estimate otherwise, which only the start needs). Starting from the nearly glassy
+        effective pair instead took 10-20 contact-set changes (docs/viscoelastic.md)."""
+        bodies = {i: (self.bodies.get(i) or self._elastic_body(i)) for i in (1, 2)}
+
+        def solve_with(compliance, start=None):
+            pair = MaterialPair(*(Material(1.0 / compliance[i], bodies[i].nu) if i in compliance else bodies[i]
+                                  for i in (1, 2)))
+            scaled = force * self.materials.E_star / pair.E_star
+            return solve_normal(self.elastic, profile, force=scaled, initial=start,
+                                extra_displacement=extra_displacement, params=params)
+
+        relaxed = solve_with({i: b.C_relaxed for i, b in self.bodies.items()})
+        X, _ = self.grid.mesh()
+        on = relaxed.contact
+        half = 0.5 * (float(X[on].max() - X[on].min()) + self.grid.dx) if on.any() else self.grid.dx
+        mean = {}
+        for i, b in self.bodies.items():
+            ratio = 2.0 * half / (self.speed * b.tau)
+            kept = -math.expm1(-ratio) / ratio if ratio > 0 else 1.0        # (ell / 2a)(1 - exp(-2a/ell))
+            mean[i] = b.C_glassy + (b.C_relaxed - b.C_glassy) * (1.0 - kept)
+        estimate = solve_with(mean, relaxed.pressure)
+        return estimate.pressure, relaxed.iterations + estimate.iterations
+
+    def _elastic_body(self, index):
+        return (self.elastic.materials.body1, self.elastic.materials.body2)[index - 1]
 
     def states(self, traction, index: int):
         """The states q (MPa, (3, ny, nx)) of body `index` in the steady state of the traction t = (p, tau_x, tau_y)
@@ -124,9 +156,9 @@ class SteadyVisco:
         A_s, A_j = _product(op, shifted), _product(op, jump)
         wake = q[:, :, 0]                          # behind the grid: e^(k-1) q_0 at the k-th column behind it
         cross, wake_wake = self._wake_terms(index, body, st.decay, wake)
-        ss = float(np.vdot(shifted, A_s)) + 2.0 * float(np.vdot(shifted, cross)) + wake_wake
-        sj = float(np.vdot(shifted, A_j)) + float(np.vdot(jump, cross))
-        jj = float(np.vdot(jump, A_j))
+        ss = dot(shifted, A_s) + 2.0 * dot(shifted, cross) + wake_wake
+        sj = dot(shifted, A_j) + dot(jump, cross)
+        jj = dot(jump, A_j)
         return (st.I_aa * ss + 2.0 * st.I_ac * sj + st.I_cc * jj) * self.grid.cell_area / body.tau
 
     def _history_operator(self, index, body):
@@ -159,9 +191,9 @@ class SteadyVisco:
             # cross[a](i, j) = sum_j' T_c(i, j - j') W_b(j'): columns d = i >= 0 of the tail kernel
             kern = sign * T[c][:, nx - 1:]                       # (2 ny - 1, nx): offsets oy, d = 0 .. nx - 1
             for j in range(ny):
-                cross[a, j] += wake[b] @ kern[j - np.arange(ny) + ny - 1]
-            conv = np.array([wake[b] @ (sign * both[c])[j - np.arange(ny) + ny - 1] for j in range(ny)])
-            ww += float(wake[a] @ conv)
+                cross[a, j] += np.einsum("k,ki->i", wake[b], kern[j - np.arange(ny) + ny - 1])
+            conv = np.array([dot(wake[b], (sign * both[c])[j - np.arange(ny) + ny - 1]) for j in range(ny)])
+            ww += dot(wake[a], conv)
         return cross, ww / (1.0 - decay * decay)
 
 

@@ -111,14 +111,14 @@ def tail_kernels(grid, pair: MaterialPair, decay: float, weight: float, componen
     Xd, Yd = np.meshgrid(xs, oy)
     Fd = influence(Xd, Yd, dx, dy, pair, components)
     wd = decay ** np.arange(n_direct)
-    S = {c: Fd[c] @ wd for c in components}
+    S = {c: np.einsum("jn,n->j", Fd[c], wd) for c in components}      # numpy's loop: BLAS threads contend
     if decay ** n_direct >= TAIL_CUTOFF:
         s, ws = _far_nodes(decay, n_direct - 0.5)      # midpoint rule: sum_{n >= N} g(n) ~ int_{N - 1/2} g
         Xf, Yf = np.meshgrid((first + s) * dx, oy)
         Ff = influence(Xf, Yf, dx, dy, pair, components)
         scale = decay ** (n_direct - 0.5)
         for c in components:
-            S[c] += scale * (Ff[c] @ ws)
+            S[c] += scale * np.einsum("jn,n->j", Ff[c], ws)
     out = {}
     for c in components:
         T = np.empty((ny, 2 * nx - 1))
