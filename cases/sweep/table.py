@@ -31,13 +31,20 @@ periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself;
 #: the creepages xi, eta (dimensionless) and phi (1/mm), the forces F_x, F_y (N) and moment M_z (N mm) on the
 #: sphere in Kalker's convention, and the stick fraction of the contact.
 CREEP_COLUMNS = ("xi", "eta", "phi", "F_x", "F_y", "M_z", "stick_fraction")
+#: Further columns of a sweep over a scene with viscoelastic bodies (docs/viscoelastic.md), added only when its runs
+#: have them: the pressure centroid along the rolling direction (mm), the rolling resistance moment (N mm), the viscous
+#: work of the last period (N mm) and the viscous power of steady rolling (W).
+VISCO_COLUMNS = ("pressure_centroid_x", "rolling_resistance_moment", "viscous_dissipation_per_period",
+                 "viscous_power")
 
 #: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
 COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "U_perp": "mm", "dU_perp_per_period": "mm",
-                "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm"}
+                "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm",
+                "pressure_centroid_x": "mm", "rolling_resistance_moment": "N mm",
+                "viscous_dissipation_per_period": "N mm", "viscous_power": "W"}
 _FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "U_perp", "dU_perp_per_period",
-                  "dissipation_per_period", "u_stat", "wall_time")
+                  "dissipation_per_period", "u_stat", "wall_time") + VISCO_COLUMNS
 _INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations")
 
 
@@ -53,6 +60,8 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
     rows = sorted(rows, key=lambda r: r.get("index", 0))
     if columns is SUMMARY_COLUMNS and any(r.get("F_x") is not None for r in rows):
         columns = SUMMARY_COLUMNS + CREEP_COLUMNS      # a sweep over a [rolling] scene
+    if any(r.get("pressure_centroid_x") is not None for r in rows):
+        columns = tuple(columns) + VISCO_COLUMNS       # viscoelastic bodies
     header = list(keys) + [c for c in columns if c not in keys]
     tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
     try:
