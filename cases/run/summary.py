@@ -136,6 +136,7 @@ def format_summary(result: RunResult) -> str:
         lines.append(f"sideways (across Ft): U_perp = {s['U_perp']:.6f} mm{walk}")
     if s.get("dissipation_per_period") is not None and d.scene.oscillating:
         lines.append(f"frictional work of the last period: {s['dissipation_per_period']:.6g} N mm")
+    lines += _visco_lines(s)
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:
@@ -167,6 +168,20 @@ def _format_creep(d: RunResult) -> str:
                             else ""))
     else:
         lines.append(f"status: {d.status}: {d.error}")
+    lines += _visco_lines(s)
     if d.path is not None:
         lines.append(f"results written to {Path(d.path).resolve()}")
     return "\n".join(lines)
+
+
+def _visco_lines(s: dict) -> list:
+    """The viscoelastic outputs of a summary (cases.run.viscoelastic), one line; none for an elastic run."""
+    if s.get("pressure_centroid_x") is None:
+        return []
+    line = (f"viscoelastic: pressure centroid {s['pressure_centroid_x']:.5g} mm ahead of the lowest point, rolling "
+            f"resistance moment {s['rolling_resistance_moment']:.5g} N mm")
+    if s.get("viscous_dissipation_per_period") is not None:
+        line += f", viscous work of the last period {s['viscous_dissipation_per_period']:.5g} N mm"
+    if s.get("viscous_power") is not None:
+        line += f", viscous power {s['viscous_power']:.5g} W"
+    return [line]
