@@ -53,6 +53,8 @@ def creep_curve_handler(args) -> int:
     if existing and not args.overwrite:
         raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: add "
                                 "--overwrite, or give another folder with -o")
+    from rollcontact.cases.results.outputs import output_folder
+    output_folder(out)
     t0 = time.perf_counter()
     table = compute_curve(scene, args.of, np.geomspace(0.02, args.max, args.points))
     wall = time.perf_counter() - t0

@@ -10,6 +10,7 @@ from pathlib import Path
 import sys
 
 from rollcontact.bem.errors import InputError, RollcontactError, SceneError
+from rollcontact.cases.arguments import command_line
 
 
 
@@ -222,7 +223,8 @@ def main(argv=None) -> int:
     if real:
         sys.stdout = _ClosedPipeSafe(sys.stdout)
     try:
-        return args.func(args)
+        with command_line():           # messages name the options (-o, --set), not the API's keywords
+            return args.func(args)
     except RollcontactError as exc:
         print(f"rollcontact {args.command}: error: {exc}", file=sys.stderr)
         return 2 if isinstance(exc, ValueError) else 1

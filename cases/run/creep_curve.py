@@ -12,13 +12,15 @@ from __future__ import annotations
 
 import csv
 from dataclasses import dataclass
+import io
 import math
-import os
 from pathlib import Path
 
 import numpy as np
 
 from rollcontact.bem.errors import InputError, OutputExistsError
+from rollcontact.cases.arguments import arg, flag, on_command_line
+from rollcontact.cases.results.writing import write_text
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
 from rollcontact.cases.scene.scene import Scene
@@ -45,7 +47,7 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
     """Steady states of `scene` at creepages `fractions` x the saturation creepage of `varied` (default: 20 values
     geometrically from 0.02 to 4). F_over_muFn is -F/(mu Fn) of the component the creepage drives (positive)."""
     if varied not in VARIED:
-        raise InputError(f"creep-curve --of {varied!r}: allowed values are {list(VARIED)}")
+        raise InputError(f"{arg('of')} {varied!r}: allowed values are {list(VARIED)}")
     fractions = np.geomspace(0.02, 4.0, 20) if fractions is None else np.asarray(fractions, dtype=float)
     grid, pair = creep_grid(scene), scene.material_pair
     op = scene_operator(scene, grid)
@@ -81,19 +83,17 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
 
 def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
     """The curve as CSV (header: COLUMNS; a comment line first with the units and the saturation creepage),
-    through a temporary file renamed into place; an existing file only with `overwrite`."""
+    through a temporary file renamed into place (cases.results.writing); an existing file only with `overwrite`."""
     path = Path(path)
     if path.exists() and not overwrite:
-        raise OutputExistsError(f"{path}: exists; rollcontact does not replace a file unless asked: add --overwrite")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        raise OutputExistsError(f"{path}: exists; rollcontact does not replace a file unless asked: "
+                                f"{'add' if on_command_line() else 'pass'} {flag('overwrite')}")
     unit = "1/mm" if table.varied == "phi" else "-"
-    with open(tmp, "w", newline="") as fh:
-        fh.write(f"# creep-force curve over {table.varied} ({unit}); saturation creepage {table.saturation:.6g} "
-                 f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
-        writer = csv.DictWriter(fh, fieldnames=COLUMNS)
-        writer.writeheader()
-        for row in table.rows:
-            writer.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
-    os.replace(tmp, path)
-    return path
+    text = io.StringIO(newline="")
+    text.write(f"# creep-force curve over {table.varied} ({unit}); saturation creepage {table.saturation:.6g} "
+               f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
+    writer = csv.DictWriter(text, fieldnames=COLUMNS)
+    writer.writeheader()
+    for row in table.rows:
+        writer.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+    return write_text(path, text.getvalue(), "creep curve")

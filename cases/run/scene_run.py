@@ -26,11 +26,13 @@ import signal
 import sys
 import threading
 
+import h5py
 import numpy as np
 
-from rollcontact.bem.errors import InputError, OutputExistsError, RollcontactError
+from rollcontact.bem.errors import InputError, OutputExistsError, OutputWriteError, RollcontactError
 from rollcontact.bem.wisdom import process_exists
-from rollcontact.cases.results.hdf5 import is_complete, stored_summary, wait_for_replaced, write_run
+from rollcontact.cases.arguments import arg, flag, on_command_line, restart_hint
+from rollcontact.cases.results.hdf5 import is_complete, stored_history, stored_summary, wait_for_replaced, write_run
 from rollcontact.cases.results.lock import OutputLock
 from rollcontact.cases.results.outputs import free_name
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
@@ -59,10 +61,11 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
     """
     if out is None:
         if stresses:
-            raise InputError("--stresses (stresses=True): the stresses go into the run's file; give an output file")
+            raise InputError(f"{flag('stresses')}: the stresses go into the run's file; give an output file "
+                             f"({arg('output')})")
         return _run_model(scene, progress, restart, None, None)
     out = Path(out).resolve() if Path(out).is_symlink() else Path(out)
-    label = label or f"-o {out}"
+    label = label or f"{arg('output')} {out}"
     locks = [] if lock is not None else [OutputLock(out, label=label).acquire()]
     try:
         target = _target(out, overwrite, restart, label)
@@ -75,13 +78,21 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
         try:
             result = _run_model(scene, progress, restart, checkpoints, stepwise)
         except RunInterrupted as exc:
-            _finish(exc.result, out, target, attrs, stepwise)
+            try:
+                _finish(exc.result, out, target, attrs, stepwise)
+            except OutputWriteError as failed:
+                raise stopped_writing(failed, target, stepwise, exc.result) from None
             raise
+        except OutputWriteError as exc:
+            raise stopped_writing(exc, target, stepwise) from None
         finally:
             if checkpoints is not None:
                 checkpoints.close()
-        cut = stepwise is not None and not _complete_stresses(stepwise, result, progress)
-        _finish(result, out, target, attrs, stepwise)
+        try:
+            cut = stepwise is not None and not _complete_stresses(stepwise, result, progress)
+            _finish(result, out, target, attrs, stepwise)
+        except OutputWriteError as exc:
+            raise stopped_writing(exc, target, stepwise, result) from None
         if cut:
             raise KeyboardInterrupt     # after the run's file is written, with the stresses computed until then
     finally:
@@ -93,7 +104,7 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
 def _run_model(scene, progress, restart, checkpoints, stresses) -> RunResult:
     if scene.rolling_on:
         if restart is not None:
-            raise InputError("--restart: a [rolling] scene is solved in one step; there is nothing to restart")
+            raise InputError(f"{arg('restart')}: a [rolling] scene is solved in one run; there is nothing to restart")
         return run_creep(scene, progress=progress)
     if scene.solver.fidelity == "mdr":
         return run_mdr(scene, progress=progress)
@@ -110,12 +121,60 @@ def _complete_stresses(stresses, result: RunResult, progress):
     try:
         for i, step in enumerate(result.field_steps):
             stresses.ensure(step, *(result.fields[n][i] for n in ("p", "tau_x", "tau_y")))
+    except OutputWriteError:
+        raise
     except (RollcontactError, KeyboardInterrupt) as exc:
         if progress:
             why = "interrupted" if isinstance(exc, KeyboardInterrupt) else f"{type(exc).__name__}: {exc}"
-            progress(f"--stresses: stopped at step {step} ({why}); the run is written with the stresses computed")
+            progress(f"{flag('stresses')}: stopped at step {step} ({why}); the run is written with the stresses computed")
         return not isinstance(exc, KeyboardInterrupt)
     return True
+
+
+def stopped_writing(exc: OutputWriteError, target: Path, stresses=None, result=None) -> OutputWriteError:
+    """The error of a run that could not write its file (a checkpoint, a step's stresses, the final write): `exc`'s
+    message, then what is kept on disk and how to continue. Nothing more is written: the last good checkpoint in
+    `target` (the file the run wrote as it went) is kept as it was, with every step file of `run --stresses`.
+    `result`: the run as far as it went, still in memory (then the error's `result`)."""
+    parts = [str(exc), "the run stopped"]
+    kept = kept_checkpoint(target)
+    if kept:
+        depths = None if stresses is None or stresses.default else stresses.z
+        parts.append(f"its last checkpoint is kept in {target} ({kept}); continue with: "
+                     f"{restart_hint(target, stresses is not None, depths)}")
+    elif target.exists():
+        parts.append(f"{target} is left as it was")
+    else:
+        parts.append("no checkpoint of it was written, so nothing of it is on disk")
+    if stresses is not None:
+        steps = sorted(stresses.folder.glob("step_*.h5")) if stresses.folder.is_dir() else []
+        if not steps and stresses.folder.is_dir():
+            try:
+                stresses.folder.rmdir()          # made by this run, empty: a step file could not be written
+            except OSError:
+                pass
+        if steps:
+            parts.append(f"the subsurface stresses of {len(steps)} stored step(s) are kept in {stresses.folder}")
+    error = OutputWriteError("; ".join(parts), path=exc.path, errno=exc.errno)
+    error.result, error.restart = result, (target if kept else None)
+    return error
+
+
+def kept_checkpoint(path: Path) -> str | None:
+    """'N steps, up to period P' of the run file `path` when it is a checkpoint a restart continues from (status
+    'incomplete' or 'failed', with the fields of a stored step), else None."""
+    stored = stored_summary(path) if path.is_file() else None
+    if stored is None or stored["status"] == "complete":
+        return None
+    try:
+        h = stored_history(path, ("step", "period"))
+        with h5py.File(path, "r") as h5:
+            snapshots = len(h5["fields/step"])
+    except (OSError, KeyError):
+        return None
+    if not snapshots or not len(h["step"]):
+        return None
+    return f"status '{stored['status']}', {len(h['step'])} steps, up to period {int(h['period'][-1])}"
 
 
 def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
@@ -128,7 +187,8 @@ def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
                 and restart.data.status != "complete")
     if not (overwrite or resuming):
         raise OutputExistsError(f"{label}: {describe_file(out)} exists; rollcontact does not replace a file unless "
-                                "asked: add --overwrite (overwrite=True in Python), or choose another name")
+                                f"asked: {'add' if on_command_line() else 'pass'} {flag('overwrite')}, or choose "
+                                "another name")
     return free_name(out.with_name(out.stem + ".partial" + out.suffix)) if is_complete(out) else out
 
 

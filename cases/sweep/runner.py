@@ -45,9 +45,11 @@ import tomllib
 
 import numpy as np
 
-from rollcontact.bem.errors import InputError, OutputExistsError, OutputInUseError, RollcontactError
+from rollcontact.bem.errors import (InputError, OutputExistsError, OutputInUseError, OutputWriteError,
+                                    RollcontactError)
 
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary
+from rollcontact.cases.arguments import arg, flag, on_command_line
 from rollcontact.cases.results.lock import OutputLock, holder_of
 from rollcontact.cases.results.outputs import output_folder
 from rollcontact.cases.scene.scene import Scene
@@ -94,6 +96,8 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: st
         lock.acquire()
     except OutputInUseError as exc:
         return {"status": "claimed", "error": str(exc), "summary": {}, "wall_time": 0.0}
+    except OutputWriteError as exc:
+        return {"status": "failed", "error": str(exc), "summary": {}, "wall_time": 0.0, "write_error": True}
     try:
         stored = stored_summary(out_path) if Path(out_path).exists() else None
         if stored is not None and stored["status"] == "complete" and stored["scene"] == scene_toml:
@@ -105,6 +109,9 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: st
                                                  restart_step=source.step,
                                                  restart_overrides=[f"motion.periods={scene.motion.periods}"])
         result = run_scene(scene, out_path, overwrite=True, lock=lock, restart=source, attrs=attrs)
+    except OutputWriteError as exc:     # a full disk, a vanished folder: the sweep stops (cases.sweep.runner)
+        return {"status": "failed", "error": str(exc), "summary": {}, "wall_time": time.perf_counter() - t0,
+                "write_error": True}
     except RollcontactError as exc:
         return {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "summary": {},
                 "wall_time": time.perf_counter() - t0}
@@ -232,7 +239,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     axes = [parse_vary(a) if isinstance(a, str) else a for a in axes]
     outdir = Path(outdir).absolute()     # the workers (Dask's among them) may run in other folders
     if jobs is not None and int(jobs) < 1:
-        raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
+        raise InputError(f"{arg('jobs')} = {jobs!r}: allowed range is jobs >= 1")
     jobs = default_jobs() if jobs is None else int(jobs)
     if scheduler:
         require_dask(scheduler)
@@ -257,6 +264,8 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     pool = make_pool(jobs, scheduler) if todo else None
 
     def finish(run, result):
+        if result.get("write_error"):
+            raise OutputWriteError(result["error"])
         row = _row(run, result, outdir)
         rows[run.index] = row
         report.elsewhere += bool(result.get("elsewhere"))
@@ -273,6 +282,10 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         for run in claimed:
             finish(run, wait_for_claimed(run))
             raise_if_interrupted()
+    except OutputWriteError as exc:
+        if pool is not None:
+            pool.stop()
+        raise stopped_sweep(exc, outdir, "summary", len(rows), len(plan)) from None
     except KeyboardInterrupt:
         report.interrupted = True
         if pool is not None:
@@ -294,6 +307,14 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
               f"{report.skipped} skipped, {report.elsewhere} by another process; summary in "
               f"{outdir / 'summary.csv'}", file=progress, flush=True)
     return report
+
+
+def stopped_sweep(exc: OutputWriteError, outdir: Path, stem: str, finished: int, planned: int) -> OutputWriteError:
+    """The error of a sweep (or limit search) that could not write (a run file, its summary table): nothing more is
+    written; the complete run files stay, and the table as last written."""
+    return OutputWriteError(f"{exc}; the {'sweep' if stem == 'summary' else 'limit search'} stopped: its complete "
+                            f"run files stay in {outdir}, and {outdir / (stem + '.csv')} as last written ({finished} "
+                            f"of {planned} finished); rerun the same command to resume", path=exc.path, errno=exc.errno)
 
 
 def _run_here(pool, todo, finish) -> list:
@@ -331,7 +352,7 @@ def claimed_table(table: Path, keys, attrs: dict, overwrite: bool):
     whose table it wrote itself (the same varied keys, base scene and overrides); the table of another one is not
     replaced unless `overwrite` (OutputExistsError naming the file and --overwrite)."""
     from rollcontact.cases.sweep.table import table_attrs
-    lock = OutputLock(table, label=f"-o {table.parent}").acquire(wait=True)
+    lock = OutputLock(table, label=f"{arg('output')} {table.parent}").acquire(wait=True)
     try:
         stored = table_attrs(table) if table.exists() and not overwrite else {}
         mine = {"varied": list(keys), **{k: attrs[k] for k in ("base_scene", "overrides")}}
@@ -340,8 +361,9 @@ def claimed_table(table: Path, keys, attrs: dict, overwrite: bool):
         if stored is None or differs:
             what = ("is not a table of rollcontact" if stored is None else
                     f"belongs to another sweep (its {', '.join(differs)} differ)")
-            raise OutputExistsError(f"-o {table.parent}: {table} {what}; rollcontact does not replace it unless "
-                                    "asked: add --overwrite, or choose another folder")
+            raise OutputExistsError(f"{arg('output')} {table.parent}: {table} {what}; rollcontact does not replace it "
+                                    f"unless asked: {'add' if on_command_line() else 'pass'} {flag('overwrite')}, or "
+                                    "choose another folder")
         yield
     finally:
         lock.release()
