@@ -59,3 +59,10 @@ def restart_hint(path, stresses: bool = False, depths=None) -> str:
                 + (f" --depths {z}" if stresses and z else ""))
     return (f"rollcontact.restart({str(path)!r}, output={str(path)!r}" + (", stresses=True" if stresses else "")
             + (f", depths=[{z}]" if stresses and z else "") + ")")
+
+
+def restart_step_hint(path, step: int) -> str:
+    """How to continue the run stored in `path` from its stored `step` into a new file."""
+    if on_command_line():
+        return f"rollcontact run --restart {path} --step {step} -o OUT.h5"
+    return f"rollcontact.restart({str(path)!r}, step={step}, output='OUT.h5')"

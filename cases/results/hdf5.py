@@ -27,6 +27,7 @@ import h5py
 import numpy as np
 
 from rollcontact.cases.results.run_result import UNITS, RunResult
+from rollcontact.cases.results.subsurface import Subsurface
 # re-exported: the modules that add to a run file write through them
 from rollcontact.cases.results.writing import new_hdf5, replacing, wait_for_replaced, write_bytes  # noqa: F401
 
@@ -105,10 +106,13 @@ def _same_value(a, b) -> bool:
 
 
 def root_attrs(h5, data: RunResult):
-    """Status, error and the further root attributes of `data` on the open file `h5`."""
+    """Status, error and the further root attributes of `data` on the open file `h5` (a list of texts, such as
+    restart_overrides, as an array of strings, also when empty)."""
     h5.attrs["status"] = data.status
     h5.attrs["error"] = data.error
     for key, value in data.attrs.items():
+        if isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+            value = np.array(list(value), dtype=h5py.string_dtype())
         h5.attrs[key] = value
 
 
@@ -188,6 +192,7 @@ def read_run(path) -> RunResult:
             summary=summary_from_attrs(h5["summary"].attrs),
             attrs={k: _py(v) for k, v in h5.attrs.items() if k not in _ROOT_ATTRS},
             path=Path(path),
+            subsurface=Subsurface.of_file(path) if "subsurface" in h5 else Subsurface(),
         )
 
 
@@ -260,4 +265,6 @@ def _py(v):
         return v.decode()
     if isinstance(v, np.generic):
         return v.item()
+    if isinstance(v, np.ndarray) and v.dtype.kind in "OSU":    # a list of texts (restart_overrides)
+        return [x.decode() if isinstance(x, bytes) else str(x) for x in v.tolist()]
     return v

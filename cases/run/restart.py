@@ -65,7 +65,7 @@ def read_source(path) -> RunResult:
 def load_restart(path, step: int | None = None) -> RestartSource:
     """The stored run at `step` (default: the last stored field step)."""
     data = read_source(path)
-    scene = Scene.from_toml_text(data.scene_toml, name=Path(path).stem)
+    scene = Scene.from_toml_text(data.scene_toml)          # with the name it was run under
     steps = [int(s) for s in np.asarray(data.field_steps)]
     if not steps:
         raise InputError(f"{arg('restart')} {path}: stores no fields, so no step can be continued from")

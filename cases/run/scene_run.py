@@ -27,26 +27,27 @@ import sys
 import threading
 
 import h5py
-import numpy as np
 
-from rollcontact.bem.errors import InputError, OutputExistsError, OutputWriteError, RollcontactError
+from rollcontact.bem.errors import (InputError, OutputExistsError, OutputInUseError, OutputWriteError,
+                                    RollcontactError)
 from rollcontact.bem.wisdom import process_exists
 from rollcontact.cases.arguments import arg, flag, on_command_line, restart_hint
 from rollcontact.cases.results.hdf5 import is_complete, stored_history, stored_summary, wait_for_replaced, write_run
-from rollcontact.cases.results.lock import OutputLock
+from rollcontact.cases.results.lock import OutputLock, lock_path
 from rollcontact.cases.results.outputs import free_name
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
+from rollcontact.cases.results.subsurface import Subsurface
 from rollcontact.cases.run.bem_run import run_bem
 from rollcontact.cases.run.checkpoint import Checkpoints
 from rollcontact.cases.run.creep_run import run_creep
 from rollcontact.cases.run.mdr_run import run_mdr
 from rollcontact.cases.run.step_stresses import StepStresses
-from rollcontact.cases.scene.scene import Scene
+from rollcontact.cases.scene.scene import Scene, stored_name
 
 
 def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart=None,
               attrs: dict | None = None, label: str | None = None, lock: OutputLock | None = None,
-              stresses: bool = False, depths=None) -> RunResult:
+              stresses: bool = False, depths=None, new_name: bool = False) -> RunResult:
     """Run `scene`; write the result to `out` (HDF5) unless it is None. Returns the result (also on failure), its
     `path` the file written.
 
@@ -56,6 +57,9 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
     (default '-o OUT'); lock: the output's lock when the caller holds it already (a sweep, which claims its runs);
     stresses: add the subsurface stresses of every stored step to the file, computed as the run goes, at `depths`
     (mm; None: the default depths), as `rollcontact stresses RUN.h5 --all-steps` would (the result's `subsurface`).
+    new_name: when `out` exists (or another process is writing it), write to the first of <stem>-2.h5, -3, ...
+    that is free, claimed through its lock so that runs started together take different names (the result's `path`
+    says which; `progress` is told), unless the run continues an incomplete `out` in place.
     OutputInUseError when another process writes `out` (or the partial file beside it). A symbolic link is
     followed: the file it points to is the output.
     """
@@ -65,10 +69,14 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
                              f"({arg('output')})")
         return _run_model(scene, progress, restart, None, None)
     out = Path(out).resolve() if Path(out).is_symlink() else Path(out)
-    label = label or f"{arg('output')} {out}"
-    locks = [] if lock is not None else [OutputLock(out, label=label).acquire()]
+    if lock is None and new_name and not _resuming(out, restart):
+        lock = _claim_free_name(out, progress)
+        out, label, locks = lock.output, lock.label, [lock]
+    else:
+        label = label or f"{arg('output')} {out}"
+        locks = [] if lock is not None else [OutputLock(out, label=label).acquire()]
     try:
-        target = _target(out, overwrite, restart, label)
+        target = _target(out, overwrite, restart, label, scene)
         if target != out:
             locks.append(OutputLock(target, label=f"{label} (its partial file {target.name})").acquire())
         for path in (out, target):
@@ -177,7 +185,36 @@ def kept_checkpoint(path: Path) -> str | None:
     return f"status '{stored['status']}', {len(h['step'])} steps, up to period {int(h['period'][-1])}"
 
 
-def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
+def _resuming(out: Path, restart) -> bool:
+    """True when the run continues the incomplete run stored in `out` itself."""
+    return (restart is not None and out.exists() and Path(restart.path).resolve() == out.resolve()
+            and restart.data.status != "complete")
+
+
+def _claim_free_name(base: Path, progress) -> OutputLock:
+    """The lock of the first of `base`, <stem>-2<suffix>, -3, ... that exists neither as a file nor as a lock file
+    and whose lock this process takes (another run started at the same moment takes the next one)."""
+    n, candidate = 1, base
+    while True:
+        if not candidate.exists() and not lock_path(candidate).exists():
+            lock = OutputLock(candidate, label=f"{arg('output')} {candidate}")
+            try:
+                lock.acquire()
+            except OutputInUseError:
+                lock = None
+            if lock is not None:
+                if not candidate.exists():
+                    break
+                lock.release()
+        n += 1
+        candidate = base.with_name(f"{base.stem}-{n}{base.suffix}")
+    if candidate != base and progress:
+        progress(f"{base} exists: writing to {candidate} (no file is replaced without {arg('output')} ... "
+                 f"{flag('overwrite')})")
+    return lock
+
+
+def _target(out: Path, overwrite: bool, restart, label: str, scene: Scene | None = None) -> Path:
     """Where the run writes until it completes: `out`, or, beside a complete run file that it is allowed to
     replace, <name>.partial.h5 (or <name>.partial-2.h5, ... when that holds the result of another run).
     OutputExistsError when `out` exists and may not be replaced."""
@@ -186,23 +223,35 @@ def _target(out: Path, overwrite: bool, restart, label: str) -> Path:
     resuming = (restart is not None and Path(restart.path).resolve() == out.resolve()
                 and restart.data.status != "complete")
     if not (overwrite or resuming):
-        raise OutputExistsError(f"{label}: {describe_file(out)} exists; rollcontact does not replace a file unless "
+        raise OutputExistsError(f"{label}: {describe_file(out, scene)} exists; rollcontact does not replace a file unless "
                                 f"asked: {'add' if on_command_line() else 'pass'} {flag('overwrite')}, or choose "
                                 "another name")
     return free_name(out.with_name(out.stem + ".partial" + out.suffix)) if is_complete(out) else out
 
 
-def describe_file(path: Path) -> str:
-    """What an existing output is, for messages: 'the complete run file X of scene S', 'the file X (not a run
-    file)', ..."""
+def describe_file(path: Path, scene: Scene | None = None) -> str:
+    """What an existing output is, for messages: 'the complete run file X (scene S; the same scene as this run's)', 'the
+    file X (not a run file)', ...; with `scene` (the run about to be written), whether the stored scene is the same
+    or in which keys it differs."""
     if path.is_dir():
         return f"the folder {path}"
     stored = stored_summary(path)
     if stored is None:
         return f"the file {path} (not a run file)"
-    first = stored["scene"].splitlines()[0] if stored["scene"] else ""
-    scene = first.split("'")[1] if first.count("'") >= 2 else "?"
-    return f"the {stored['status'] or 'unfinished'} run file {path} (scene '{scene}')"
+    what = f"scene '{stored_name(stored['scene']) or '?'}'"
+    if scene is not None:
+        try:
+            other = Scene.from_toml_text(stored["scene"], run_limits=False).to_dict(include_none=True)
+        except RollcontactError:
+            other = None
+        mine = scene.to_dict(include_none=True)
+        if other is not None:
+            differ = [f"{sec}.{key}" for sec in sorted(set(mine) | set(other))
+                      for key in sorted(set(mine.get(sec, {})) | set(other.get(sec, {})))
+                      if mine.get(sec, {}).get(key) != other.get(sec, {}).get(key)]
+            what += ("; the same scene as this run's" if not differ else
+                     f"; it differs from this run's in {', '.join(differ[:4])}{', ...' if len(differ) > 4 else ''}")
+    return f"the {stored['status'] or 'unfinished'} run file {path} ({what})"
 
 
 def _finish(result: RunResult, out: Path, target: Path, attrs, stresses=None):
@@ -221,9 +270,8 @@ def _finish(result: RunResult, out: Path, target: Path, attrs, stresses=None):
                 target.unlink(missing_ok=True)      # this run's checkpoints (the name was free when it started)
             if stresses is not None:
                 stresses.discard()
-                z = stresses.z if stresses.z is not None else np.zeros(0)
-                result.subsurface = dict(steps=filled, z=z, seconds=stresses.seconds,
-                                         computed=list(stresses.computed), reused=list(stresses.reused))
+                result.subsurface = Subsurface.of_file(path, seconds=stresses.seconds,
+                                                       computed=list(stresses.computed), reused=list(stresses.reused))
         finally:
             wait_for_replaced()
 

@@ -96,9 +96,16 @@ def _selected_steps(stored, steps) -> list[int]:
                          "there are no tractions to compute stresses from")
     if steps is None:
         return stored[-1:]
-    if steps == "all":
+    if isinstance(steps, str):
+        if steps != "all":
+            raise InputError(f"{arg('steps')} {steps!r}: expected stored steps, 'all' or None (the last stored step)")
         return stored
-    chosen = sorted({int(s) for s in steps})
+    if isinstance(steps, (int, np.integer)):
+        steps = [steps]
+    try:
+        chosen = sorted({int(s) for s in steps})
+    except (TypeError, ValueError):
+        raise InputError(f"{arg('steps')} {steps!r}: expected stored steps (integers), 'all' or None") from None
     missing = [s for s in chosen if s not in stored]
     if missing:
         raise InputError(f"{arg('step')} {missing[0]}: not a stored step; stored steps: {_compact(stored)}")
@@ -152,6 +159,34 @@ def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 
                                  "file written by rollcontact run") from None
     wait_for_replaced()
     return {"steps": chosen, "z": z, "seconds": seconds}
+
+
+def subsurface_in_memory(result, steps=None, depths=None, progress=None, threads: int = 1):
+    """The subsurface stresses of a RunResult held in memory (no file): the same values `add_subsurface` stores, for
+    `steps` (stored steps, 'all', or None for the last) at `depths` (mm; None: the default depths of the run's
+    contact radius), as a cases.results.subsurface.Subsurface of arrays (snapshots, nz, ny, nx) in MPa."""
+    from rollcontact.cases.results.subsurface import Subsurface
+    chosen = _selected_steps(result.field_steps, steps)
+    scene = result.scene
+    grid = grid_of(result.x, result.y)
+    a = result.summary.get("a")
+    z = run_depths(scene, float(a) if a is not None else np.nan, depths)
+    op = SubsurfaceStresses(grid, scene.materials.nu2, threads=threads)
+    stored = [int(s) for s in np.asarray(result.field_steps)]
+    arrays = {name: np.empty((len(chosen), len(z)) + grid.shape) for name in SUBSURFACE_NAMES}
+    layer = np.empty((6,) + grid.shape)
+    t0 = time.perf_counter()
+    for i, step in enumerate(chosen):
+        k = stored.index(step)
+        op.set_tractions(*(np.asarray(result.fields[n])[k] for n in ("p", "tau_x", "tau_y")))
+        for j, depth in enumerate(z):
+            for name, v in layer_fields(op, float(depth), layer).items():
+                arrays[name][i, j] = v
+        if progress:
+            progress(f"subsurface stresses of step {step}: {len(z)} depths")
+    return Subsurface(None, z=z, steps=chosen, x=np.asarray(result.x), y=np.asarray(result.y),
+                      nu=float(scene.materials.nu2), depths="default" if depths is None else "given", arrays=arrays,
+                      seconds=time.perf_counter() - t0, computed=chosen)
 
 
 def _fill(dst, src, grid, nu, steps, z, default, progress, threads, check) -> float:

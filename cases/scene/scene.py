@@ -32,8 +32,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields, replace
 import math
 from pathlib import Path
+import re
 import tomllib
 from importlib import resources
+
+import numpy as np
 
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
@@ -53,6 +56,14 @@ ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"), ("xi", "
 #: forces. R and Rx, Ry switch the shape (sphere, ellipsoid), as geometry.shape does, and may be switched.
 SPELLINGS = {("load", "ft"): "Ft", ("load", "Ft"): "ft", ("motion", "w"): "W", ("motion", "W"): "w",
              ("rolling", "xi"): "Fx", ("rolling", "Fx"): "xi", ("rolling", "eta"): "Fy", ("rolling", "Fy"): "eta"}
+
+
+def stored_name(toml_text: str) -> str | None:
+    """The scene name a stored scene's first line states (`Scene.to_toml`: "# rollcontact scene 'NAME' (units: ..."),
+    or None."""
+    first = toml_text.split("\n", 1)[0] if isinstance(toml_text, str) else ""
+    match = re.match(r"# rollcontact scene '(.*)' \(units:", first)
+    return match.group(1) if match else None
 
 
 def other_spellings(key: str) -> set:
@@ -103,6 +114,7 @@ class Scene(SceneLimits):
         scene = cls(**parts, name=name)
         scene._check_rolling(data)
         scene._check_consistency()
+        scene._check_finite()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
@@ -134,8 +146,12 @@ class Scene(SceneLimits):
         return cls.from_toml_text(text, name=path.stem, base=path.parent)
 
     @classmethod
-    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True, base=None) -> "Scene":
-        """base: the folder a relative [geometry] path is relative to (the scene file's; default the current one)."""
+    def from_toml_text(cls, text: str, name: str | None = None, run_limits: bool = True, base=None) -> "Scene":
+        """The scene of a TOML text. name: its name (default: the name a stored scene states in its first line,
+        `to_toml`, else 'scene'); base: the folder a relative [geometry] path is relative to (the scene file's;
+        default the current one)."""
+        if name is None:
+            name = stored_name(text) or "scene"
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
@@ -328,6 +344,35 @@ class Scene(SceneLimits):
         if mo.w is not None and mo.W is not None:
             raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
         self._check_oscillation()
+
+    def _check_finite(self):
+        """The combined moduli and the contact size that the keys give are finite and positive: keys each within their
+        range can still over- or underflow together (E1 = 5e-324 MPa gives E* = 0; R = 1e300 mm an infinite
+        contact). SceneError naming the keys."""
+        m = self.materials
+        with np.errstate(all="ignore"):
+            pair = self.material_pair
+            moduli = (("E*", pair.E_star), ("G*", pair.G_star))
+        for name, value in moduli:
+            if not (math.isfinite(value) and value > 0):
+                raise SceneError(f"[materials] E1 = {m.E1!r}, nu1 = {m.nu1!r}, E2 = {m.E2!r}, nu2 = {m.nu2!r} MPa: the "
+                                 f"combined modulus {name} = {value!r} MPa is not a positive finite number (the moduli "
+                                 "over- or underflow); allowed are moduli whose combination is, e.g. 1e-100 < E < 1e100")
+        try:
+            with np.errstate(over="raise", divide="raise", invalid="raise"):
+                a = self.contact_radius
+                axes = self.semi_axes
+        except (ArithmeticError, ValueError, FloatingPointError):
+            a, axes = math.nan, (math.nan,)
+        if not (math.isfinite(a) and a > 0 and all(math.isfinite(v) and v > 0 for v in axes)):
+            raise SceneError(f"[geometry] {self._geometry_text()} with [load] Fn = {self.load.Fn!r} N and E* = "
+                             f"{pair.E_star:.6g} MPa: the contact size a = {a!r} mm is not a positive finite length "
+                             "(the keys over- or underflow together); give a geometry, load and moduli whose Hertz "
+                             "contact radius is")
+
+    def _geometry_text(self) -> str:
+        g = self.geometry
+        return ", ".join(f"{f.name} = {getattr(g, f.name)!r}" for f in fields(g) if getattr(g, f.name) is not None)
 
     @property
     def oscillating(self) -> bool:

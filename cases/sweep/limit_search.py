@@ -280,6 +280,25 @@ class LimitReport:
     def limits_csv(self) -> Path:
         return self.outdir / "limits.csv"
 
+    def report(self) -> str:
+        """The lines `rollcontact limit-search` prints: each combination's 3-D bracket and the MDR closed forms."""
+        name = "f_t,lim" if self.searched == "load.ft" else "w_lim"
+        lines = []
+        for r in self.rows:
+            fixed = " ".join(f"{k}={r[k]}" for k in self.keys)
+            if r["status"] == "failed":
+                lines.append(f"{fixed}: failed: {r['error']}")
+                continue
+            closed = ", ".join(f"{c.split('=')[1]}: {r[c]:.4f}" for c in ("mdr_kappa=1", "mdr_kappa=1.1",
+                                                                           "mdr_kappa=1.5"))
+            lines.append(f"{fixed}: 3D {name} in [{r['lower']:.4f}, {r['upper']:.4f}] (mid {r['midpoint']:.4f}, "
+                         f"{r['status']}, {r['probes']} probes); MDR kappa {closed}")
+        lines.append(f"limits: {self.limits_csv}")
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return f"LimitReport({len(self.rows)} combination(s), searched={self.searched!r}, outdir={str(self.outdir)!r})"
+
 
 def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=None, scheduler=None,
                   overwrite=False, progress=sys.stderr) -> LimitReport:

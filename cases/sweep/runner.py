@@ -108,6 +108,10 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: st
         attrs = None if source is None else dict(restarted_from=str(Path(extend_from).resolve()),
                                                  restart_step=source.step,
                                                  restart_overrides=[f"motion.periods={scene.motion.periods}"])
+        resumed = interrupted_source(out_path, stored, scene_toml)
+        if resumed is not None:      # a run of this scene killed or interrupted: continued from its last checkpoint
+            source, attrs = resumed, dict(restarted_from=str(Path(out_path).resolve()), restart_step=resumed.step,
+                                          restart_overrides=[])
         result = run_scene(scene, out_path, overwrite=True, lock=lock, restart=source, attrs=attrs)
     except OutputWriteError as exc:     # a full disk, a vanished folder: the sweep stops (cases.sweep.runner)
         return {"status": "failed", "error": str(exc), "summary": {}, "wall_time": time.perf_counter() - t0,
@@ -119,6 +123,23 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: st
         lock.release()
     return {"status": result.status, "error": result.error, "summary": dict(result.summary),
             "wall_time": result.wall_time}
+
+
+def interrupted_source(out_path, stored, scene_toml: str):
+    """The run file `out_path` as a cases.run.restart.RestartSource when it holds the planned scene (`scene_toml`)
+    stopped part-way: a checkpoint of a killed run (status 'incomplete') or a run interrupted by the user (status
+    'failed'), with the fields of a stored step to continue from; None otherwise (the run starts from step 0).
+    `stored`: its stored_summary (None for no file)."""
+    from rollcontact.cases.run.restart import load_restart
+    if stored is None or stored["scene"] != scene_toml:
+        return None
+    if not (stored["status"] == "incomplete" or (stored["status"] == "failed"
+                                                  and stored["error"] == "interrupted by the user")):
+        return None
+    try:
+        return load_restart(out_path)
+    except (RollcontactError, OSError):
+        return None
 
 
 def wait_for_claimed(run: PlannedRun, poll: float = CLAIM_POLL, notice_after: float = CLAIM_NOTICE) -> dict:
@@ -219,6 +240,15 @@ class SweepReport:
     @property
     def summary_h5(self) -> Path:
         return self.outdir / "summary.h5"
+
+    def report(self) -> str:
+        """The line `rollcontact sweep` prints."""
+        return (f"{self.planned} run(s): {self.ran} run now, {self.skipped} skipped (already complete), "
+                f"{self.elsewhere} run by another process, {self.failed} failed; summary: {self.summary_csv}")
+
+    def __repr__(self) -> str:
+        return (f"SweepReport({self.planned} planned, {self.ran} ran, {self.skipped} skipped, {self.failed} failed, "
+                f"outdir={str(self.outdir)!r})")
 
 
 
