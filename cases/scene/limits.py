@@ -50,12 +50,13 @@ MAX_STEPS = 1_000_000
 #: Why the peaks: Coulomb friction is rate-independent, so the frictional work of a cycle follows its extreme loads,
 #: not the path between them. With the sampled phase a distance d from a peak, the largest load falls short by
 #: 1 - cos(d) of the amplitude. Measured on Mindlin-Deresiewicz (w = 0, ft = 0, ft_amplitude x = 0.3 / 0.6 / 0.9,
-#: dx = 0.4 mm, paper materials; benchmarks/load_cycle_sampling.py): with the peaks on steps the work per cycle is
-#: within 0.2 % of its 192-step value from 4 steps per cycle on; with the peaks half a step off it is 3.1 / 3.5 /
-#: 4.8 % low at 24 steps (peak 0.86 % short), 12-17 % at 12, 24-34 % at 8, 40 % at 6 (any phase: peak 13 % short)
-#: and 72-79 % at 4 (phase 45 deg: peak 29 % short). PEAK_MISS = 1 - cos(pi/24) = 0.86 % is the worst case of 24
-#: steps per cycle, the default of a period without rolling: every scene sampled as finely as the default passes at
-#: any phase, a coarser one only when its steps fall on (or within 7.5 deg of) the peaks.
+#: dx = 0.4 mm, paper materials; benchmarks/load_cycle_sampling.py, docs/robustness.md): with the peaks on steps the
+#: work per cycle is within 0.3 % of its 192-step value from 4 steps per cycle on; with the peaks half a step off it
+#: is 3.1 / 3.5 / 4.8 % low at 24 steps (peak 0.86 % short), 12-17 % at 12, 25-34 % at 8, and at 4 steps (phase 45
+#: deg, peak 29 % short) 72-79 %; 6 steps miss the peaks by 13 % at any phase (40-51 % low). PEAK_MISS =
+#: 1 - cos(pi/24) = 0.86 % is the worst case of 24 steps per cycle, the default of a period without rolling: every
+#: scene sampled as finely as the default passes at any phase, a coarser one only when its steps fall on (or within
+#: 7.5 deg of) the peaks.
 #: Why at least 4 steps: a cycle's rise and fall each need a step between its extremes; Nyquist's 2 steps would
 #: alternate between the two extremes, and at fewer the cycles alias (1000 cycles in 24 steps "shake down" at
 #: loads the steps never visit).
@@ -197,7 +198,7 @@ class SceneLimits:
         raise SceneError(
             f"[load] cycles_per_period = {m} with {n} steps per period: {why}; allowed is at least "
             f"{MIN_STEPS_PER_LOAD_CYCLE} steps per load cycle, every peak reached within {100 * PEAK_MISS:.2g} % (the "
-            f"worst case of 24 steps per cycle: the work per cycle then stays within 5 %; docs/oscillating_loads.md); "
+            f"worst case of 24 steps per cycle: the work per cycle then stays within 5 %; docs/robustness.md); "
             f"use {how}, or a phase that puts the peaks on steps")
 
     def _check_rolling_run(self):
