@@ -68,14 +68,13 @@ def _run(args) -> int:
     progress = not args.quiet
     depths = _stress_depths(args)
     if args.restart:
-        out = Path(args.output or api.default_output(restart=args.restart, step=args.step,
-                                                         overrides=args.overrides))
+        out = args.output or api.default_output(restart=args.restart, step=args.step, overrides=args.overrides)
         run = lambda: api.restart(args.restart, step=args.step, overrides=args.overrides,  # noqa: E731
                                   output=out, overwrite=args.overwrite, new_name=not args.output, progress=progress,
                                   stresses=args.stresses, depths=depths)
     else:
         scene = api.load_scene(args.scene, args.overrides)
-        out = Path(args.output or api.default_output(scene, overrides=args.overrides))
+        out = args.output or api.default_output(scene, overrides=args.overrides)
         run = lambda: api.run(scene, out, overwrite=args.overwrite, new_name=not args.output,  # noqa: E731
                               progress=progress, stresses=args.stresses, depths=depths)
     if progress and not args.output and (args.overrides or args.restart) and str(out) != str(args.restart):
@@ -87,7 +86,7 @@ def _run(args) -> int:
     except api.RunInterrupted as exc:
         print(f"rollcontact run: {exc}", file=sys.stderr)
         return 130
-    if result.path is not None and result.path.name.startswith(f"{out.stem}.partial"):
+    if result.path is not None and result.path.name.startswith(f"{Path(out).stem}.partial"):
         print(f"the run did not complete: written to {result.path}, beside the complete run in {out}, "
               "which is kept", file=sys.stderr)
     print(result.report())

@@ -114,10 +114,11 @@ class Scene(SceneLimits):
         scene = cls(**parts, name=name)
         scene._check_rolling(data)
         scene._check_consistency()
-        scene._check_finite()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
+        if scene.shape != "file" or run_limits:    # a file profile's size needs its file
+            scene._check_finite()
         scene._resolve_resolution()
         if scene.shape == "file" and run_limits:
             check_file_coverage(scene)

@@ -175,7 +175,7 @@ def test_second_identical_sweep_skips_every_run_and_touches_no_run_file(base, re
 def test_changed_set_gives_new_files_instead_of_reusing_old_ones(base, tmp_path):
     vary = ["load.ft=0.3", "motion.w=0.15"]
     first = run_sweep(base, vary, tmp_path, overrides=COARSE, jobs=1, progress=None)
-    with pytest.raises(OutputExistsError, match="summary.h5 belongs to another sweep .its overrides differ.*--overwrite"):
+    with pytest.raises(OutputExistsError, match="summary.h5 belongs to another sweep .its overrides differ.*pass overwrite=True"):
         run_sweep(base, vary, tmp_path, overrides=COARSE + ["motion.periods=4"], jobs=1, progress=None)
     second = run_sweep(base, vary, tmp_path, overrides=COARSE + ["motion.periods=4"], jobs=1, progress=None,
                        overwrite=True)
@@ -203,8 +203,8 @@ def test_grid_over_the_element_limit_fails_that_run_only(base, tmp_path):
     """dx = 1e-5 mm (dy = 0.6 mm) over the ~12 mm swept contact needs ~25e6 > 2048^2 elements: a valid scene
     that bem.grid refuses at run time (no run file; the summary row carries the message)."""
     report = run_sweep(base, ["grid.dx=0.6,1e-5"], tmp_path,
-                       overrides=COARSE + ["load.ft=0.3", "motion.w=0.15", "motion.periods=1"], jobs=1,
-                       progress=None)
+                       overrides=[s for s in COARSE if not s.startswith("grid.dx")]
+                       + ["load.ft=0.3", "motion.w=0.15", "motion.periods=1"], jobs=1, progress=None)
     rows = _by_values(report.rows, ["grid.dx"])
     assert rows[(0.6,)]["status"] == "complete"
     bad = rows[(1e-5,)]
