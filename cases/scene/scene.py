@@ -36,26 +36,20 @@ import re
 import tomllib
 from importlib import resources
 
-import numpy as np
 
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.arguments import arg
 from rollcontact.cases.scene.geometry import (
-    SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
+    check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
     SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
-
-#: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
-ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"), ("xi", "Fx"), ("eta", "Fy"))
-#: pairs of ALTERNATIVE_KEYS that an override may not switch from the scene's spelling to the other (the scene's
-#: value would be dropped unannounced): the tangential load as f_t or in N, the amplitude as w or in mm, creepages or
-#: forces. R and Rx, Ry switch the shape (sphere, ellipsoid), as geometry.shape does, and may be switched.
-SPELLINGS = {("load", "ft"): "Ft", ("load", "Ft"): "ft", ("motion", "w"): "W", ("motion", "W"): "w",
-             ("rolling", "xi"): "Fx", ("rolling", "Fx"): "xi", ("rolling", "eta"): "Fy", ("rolling", "Fy"): "eta"}
+from rollcontact.cases.scene.checks import SceneChecks
+from rollcontact.cases.scene.overrides import (  # noqa: F401  (ALTERNATIVE_KEYS, SPELLINGS, other_spellings re-exported)
+    ALTERNATIVE_KEYS, SPELLINGS, assignments_of, other_spellings, toml_value, with_overrides)
 
 
 def stored_name(toml_text: str) -> str | None:
@@ -66,15 +60,8 @@ def stored_name(toml_text: str) -> str | None:
     return match.group(1) if match else None
 
 
-def other_spellings(key: str) -> set:
-    """The alternative spellings of section.key: 'load.ft' -> {'load.Ft'}, 'geometry.R' -> {'geometry.Rx',
-    'geometry.Ry'}; empty for a key without one."""
-    sec, _, name = key.partition(".")
-    return {f"{sec}.{b if name == a else a}" for a, b in ALTERNATIVE_KEYS if name in (a, b)}
-
-
 @dataclass
-class Scene(SceneLimits):
+class Scene(SceneChecks, SceneLimits):
     """A complete, validated scene. Build it with `Scene.from_toml`, `Scene.from_dict` or `default_scene`."""
 
     materials: Materials = field(default_factory=Materials)
@@ -178,96 +165,8 @@ class Scene(SceneLimits):
         lines = [f"# rollcontact scene '{self.name}' (units: mm, N, MPa, degrees)"]
         for sec, vals in self.to_dict().items():
             lines.append(f"\n[{sec}]")
-            lines += [f"{k} = {_toml_value(v)}" for k, v in vals.items()]
+            lines += [f"{k} = {toml_value(v)}" for k, v in vals.items()]
         return "\n".join(lines) + "\n"
-
-    @staticmethod
-    def assignments(overrides) -> list[str]:
-        """`section.key=value` strings (as `--set` takes them) from {"section.key": value}; a list of such strings
-        passes through. Values are written as TOML, so that they parse back to the same value; a text value is
-        taken as --set takes its text ({"load.ft": "0.3"} is --set load.ft=0.3). SceneError naming `overrides`
-        (--set) for anything else."""
-        if isinstance(overrides, dict):
-            out = []
-            for key, value in overrides.items():
-                if not isinstance(key, str):
-                    raise SceneError(f"{arg('overrides')}: key {key!r} is not a 'section.key' string")
-                out.append(f"{key}={value if isinstance(value, str) else _toml_value(value)}")
-            return out
-        if isinstance(overrides, str):
-            return [overrides]
-        try:
-            items = list(overrides)
-        except TypeError:
-            raise SceneError(f"{arg('overrides')} = {overrides!r}: expected {{'section.key': value}} or a list of "
-                             "'section.key=value' strings") from None
-        bad = [item for item in items if not isinstance(item, str)]
-        if bad:
-            raise SceneError(f"{arg('overrides')} {bad[0]!r}: expected a 'section.key=value' string")
-        return items
-
-    def with_overrides(self, assignments, replaces=()) -> "Scene":
-        """A new scene with overrides applied: `section.key=value` strings (values parsed as TOML, else as a number,
-        else as text, as --set takes them), or a dict {"section.key": value} (a text value is parsed the same way).
-
-        An override in the other spelling of a quantity the scene gives (load.Ft where the scene gives load.ft,
-        motion.W for motion.w, forces rolling.Fx, Fy for the creepages xi, eta, and the reverse) is refused, naming
-        the scene's value and its equivalent, unless its key is in `replaces` (a limit search sets the load.ft or
-        motion.w it searches). SceneError names the key."""
-        assignments = self.assignments(assignments)
-        data = self.to_dict()
-        for key in self.derived:  # re-derived from the overridden scene unless set explicitly
-            sec, name = key.split(".")
-            data.get(sec, {}).pop(name, None)    # [motion] is left out of a rolling scene's dict
-        given = {}  # section.key -> the --set item that gave it
-        for item in assignments:
-            if "=" not in item or "." not in item.split("=", 1)[0]:
-                raise SceneError(f"{arg('overrides')} {item!r}: expected section.key=value, e.g. load.ft=0.5")
-            key, raw = item.split("=", 1)
-            sec, name = key.strip().split(".", 1)
-            if sec not in SECTIONS:
-                raise SceneError(f"{arg('overrides')} {item!r}: unknown section {sec!r}; allowed: {list(SECTIONS)}")
-            value = _parse_value(raw.strip(), text=_is_text_key(sec, name))
-            section = data.setdefault(sec, {})
-            for other in sorted(other_spellings(f"{sec}.{name}")):
-                if other in given:
-                    raise SceneError(f"{arg('overrides')} {given[other]!r} and {arg('overrides')} {item!r}: give "
-                                     f"either {other} or {sec}.{name}, not both")
-                o_name = other.partition(".")[2]
-                if (o_name in section and SPELLINGS.get((sec, name)) == o_name
-                        and f"{sec}.{name}" not in replaces):
-                    raise SceneError(self._spelling_refusal(item, sec, name, o_name, section[o_name], value))
-                section.pop(o_name, None)
-            section[name] = value
-            given[f"{sec}.{name}"] = item
-        if "geometry.shape" in given:  # a new shape: the old shape's keys that it does not take are dropped
-            keep = SHAPE_KEYS.get(data["geometry"]["shape"], ())
-            for name in list(data["geometry"]):
-                if name != "shape" and name not in keep and f"geometry.{name}" not in given:
-                    del data["geometry"][name]
-        return Scene.from_dict(data, name=self.name)
-
-    def _spelling_refusal(self, item, sec, name, other, stored, value) -> str:
-        """The message refusing `item` (section.name=value) where the scene gives section.other = stored."""
-        head = f"{arg('overrides')} {item!r}: the scene gives {sec}.{other} = {stored!r}"
-        if sec == "rolling":
-            given, wanted = (("forces", "creepages") if name in ("Fx", "Fy") else ("creepages", "forces"))
-            return (f"{head}: prescribed forces (rolling.Fx, rolling.Fy) and creepages (rolling.xi, rolling.eta) "
-                    f"exclude each other, and the scene prescribes the {wanted}; override the {wanted}, or write "
-                    f"a scene file with the {given} in their place")
-        equivalent = ""
-        if _is_number(value):
-            ld = self.load
-            if name == "Ft":
-                equivalent = f" ({sec}.ft = {value / (ld.mu * ld.Fn):.6g} is Ft = {value} N here)"
-            elif name == "ft":
-                equivalent = f" ({sec}.Ft = {value * ld.mu * ld.Fn:.6g} N is ft = {value} here)"
-            elif name == "W":
-                equivalent = f" ({sec}.w = {value / self.contact_radius:.6g} is W = {value} mm here)"
-            elif name == "w":
-                equivalent = f" ({sec}.W = {value * self.contact_radius:.6g} mm is w = {value} here)"
-        return (f"{head}, the same quantity in its other spelling: give {sec}.{other}{equivalent}, or a scene file "
-                f"with {sec}.{name} in place of {sec}.{other}")
 
     @property
     def rolling_on(self) -> bool:
@@ -292,124 +191,22 @@ class Scene(SceneLimits):
         (sa, sb), t = self.semi_axes, math.radians(self.rolling.direction)
         return math.hypot(sa * math.cos(t), sb * math.sin(t))
 
-    def _check_rolling(self, data: dict):
-        """A [rolling] scene has no [motion], no tangential load and the BEM model."""
-        if not self.rolling_on:
-            if set(data.get("rolling", {})) - {"mode"}:
-                raise SceneError("[rolling] mode = 'none' with other [rolling] keys: set mode = 'steady' to roll "
-                                 "with creepages, or leave the [rolling] section out")
-            return
-        if "motion" in data:
-            raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
-                             "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
-        ld = self.load
-        for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
-            if value is not None:
-                raise SceneError(f"[load] {key} = {value!r} with [rolling]: the tangential force of a rolling "
-                                 "scene follows from its creepages [rolling] xi, eta, phi; remove load." + key)
-        if ld.levels:
-            raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
-                             "load.levels")
-        ro = self.rolling
-        for creep, force in (("xi", "Fx"), ("eta", "Fy")):
-            if getattr(ro, creep) is not None and getattr(ro, force) is not None:
-                raise SceneError(f"[rolling] give either {creep} (creepage) or {force} (N), not both")
-        if (ro.Fx is None) != (ro.Fy is None):
-            raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
-                             "give both, or the creepages xi and eta")
-        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", "")):
-            if getattr(ro, key) is not None and ro.mode != "transient":
-                raise SceneError(f"[rolling] {key} = {getattr(ro, key)!r}{unit} with mode = {ro.mode!r}: {key} "
-                                 "applies to mode = 'transient' only")
-        if ro.step is not None:
-            half = self.rolling_half_length
-            if ro.step > half:
-                raise SceneError(f"[rolling] step = {ro.step!r} mm: allowed range is 0 < step <= {half:.6g} mm (the "
-                                 "contact's half-length a along the rolling direction; a longer step skips material)")
-            distance = ro.distance if ro.distance is not None else 8.0 * half
-            if distance / ro.step > MAX_STEPS:
-                raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
-                                 f"{MAX_STEPS} steps; use a larger step or a shorter distance")
-        if self.solver.fidelity != "bem":
-            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
-                             "boundary elements; allowed value is 'bem'")
+    @staticmethod
+    def assignments(overrides) -> list[str]:
+        """`section.key=value` strings (as `--set` takes them) from {"section.key": value} (cases.scene.overrides)."""
+        return assignments_of(overrides)
 
-    def _check_consistency(self):
-        ld, mo = self.load, self.motion
-        resolve_shape(self.geometry)
-        if ld.ft is not None and ld.Ft is not None:
-            raise SceneError("[load] give either ft (= Ft/(mu Fn)) or Ft (N), not both")
-        if ld.Ft is not None and ld.Ft > ld.mu * ld.Fn * (1 + 1e-12):
-            raise SceneError(f"[load] Ft = {ld.Ft} N exceeds mu*Fn = {ld.mu * ld.Fn:.6g} N: gross sliding, "
-                             "no static state exists (allowed range 0 <= Ft <= mu*Fn)")
-        if mo.w is not None and mo.W is not None:
-            raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
-        self._check_oscillation()
-
-    def _check_finite(self):
-        """The combined moduli and the contact size that the keys give are finite and positive: keys each within their
-        range can still over- or underflow together (E1 = 5e-324 MPa gives E* = 0; R = 1e300 mm an infinite
-        contact). SceneError naming the keys."""
-        m = self.materials
-        with np.errstate(all="ignore"):
-            pair = self.material_pair
-            moduli = (("E*", pair.E_star), ("G*", pair.G_star))
-        for name, value in moduli:
-            if not (math.isfinite(value) and value > 0):
-                raise SceneError(f"[materials] E1 = {m.E1!r}, nu1 = {m.nu1!r}, E2 = {m.E2!r}, nu2 = {m.nu2!r} MPa: the "
-                                 f"combined modulus {name} = {value!r} MPa is not a positive finite number (the moduli "
-                                 "over- or underflow); allowed are moduli whose combination is, e.g. 1e-100 < E < 1e100")
-        try:
-            with np.errstate(over="raise", divide="raise", invalid="raise"):
-                a = self.contact_radius
-                axes = self.semi_axes
-        except (ArithmeticError, ValueError, FloatingPointError):
-            a, axes = math.nan, (math.nan,)
-        if not (math.isfinite(a) and a > 0 and all(math.isfinite(v) and v > 0 for v in axes)):
-            raise SceneError(f"[geometry] {self._geometry_text()} with [load] Fn = {self.load.Fn!r} N and E* = "
-                             f"{pair.E_star:.6g} MPa: the contact size a = {a!r} mm is not a positive finite length "
-                             "(the keys over- or underflow together); give a geometry, load and moduli whose Hertz "
-                             "contact radius is")
-
-    def _geometry_text(self) -> str:
-        g = self.geometry
-        return ", ".join(f"{f.name} = {getattr(g, f.name)!r}" for f in fields(g) if getattr(g, f.name) is not None)
+    def with_overrides(self, assignments, replaces=()) -> "Scene":
+        """A new scene with overrides applied: `section.key=value` strings, or a dict {"section.key": value} (a text
+        value read as --set reads it). An override in the other spelling of a quantity the scene gives (load.Ft where
+        it gives load.ft, motion.W for motion.w, forces for creepages) is refused unless its key is in `replaces` (a
+        limit search sets the load.ft or motion.w it searches). SceneError names the key (cases.scene.overrides)."""
+        return with_overrides(self, assignments, replaces)
 
     @property
     def oscillating(self) -> bool:
         """True when a load oscillates within each period (load.ft_amplitude or load.fn_amplitude > 0)."""
         return self.load.ft_amplitude > 0 or self.load.fn_amplitude > 0
-
-    def _check_oscillation(self):
-        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
-
-        The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
-        checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi
-        in [-1, 1] is monotone in s on either side of its zero, so its maximum is at s = +1 or s = -1, and
-        |Ft| < mu Fn holds at every phase iff |ft + A| < 1 + B and |ft - A| < 1 - B, i.e. (ft, A >= 0)
-        ft + B - 1 < A < min(1 + B - ft, 1 - B + ft).
-        """
-        ld = self.load
-        if not self.oscillating:
-            return
-        if ld.levels:
-            raise SceneError(f"[load] levels = {ld.levels!r} cannot be combined with oscillating loads "
-                             "(ft_amplitude, fn_amplitude): give one or the other")
-        if ld.fn_amplitude > 0 and self.shape not in ("sphere", "ellipsoid"):
-            raise SceneError(f"[load] fn_amplitude = {ld.fn_amplitude!r} with [geometry] shape = {self.shape!r}: an "
-                             "oscillating normal load is supported for shape = 'sphere' or 'ellipsoid' only (the grid "
-                             "is sized by Hertz's a ~ Fn^(1/3) at the largest Fn); set fn_amplitude = 0")
-        A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
-        use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
-        if use >= 1.0:
-            lower, upper = ft + B - 1.0, min(1.0 + B - ft, 1.0 - B + ft)
-            allowed = (f"ft_amplitude < {upper:.6g}" if lower < 0 else
-                       f"{lower:.6g} < ft_amplitude < {upper:.6g}" if lower < upper else
-                       "none: lower load.ft below 1")
-            raise SceneError(
-                f"[load] ft_amplitude = {A!r} with ft = {ft:.6g}, fn_amplitude = {B!r}: |Ft| reaches {use:.4g} "
-                f"mu Fn during the cycle (gross sliding; at the smallest Fn, Fn (1 - fn_amplitude), when ft is "
-                f"large); allowed range is {allowed} at this ft and fn_amplitude (|Ft| < mu Fn at every phase)")
 
     # --- derived quantities ----------------------------------------------------------------------
     @property
@@ -547,50 +344,6 @@ class Scene(SceneLimits):
 
     def replace(self, **sections) -> "Scene":
         return replace(self, **sections)
-
-
-def _is_text_key(sec: str, name: str) -> bool:
-    """True for a key whose values are text (a choice such as solver.fidelity, or geometry.path)."""
-    for f in fields(SECTIONS[sec]):
-        if f.name == name:
-            return bool(f.metadata.get("choices")) or f.type == "str | None"
-    return False
-
-
-def _parse_value(raw: str, text: bool = False):
-    """A --set value: TOML, else a number as Python writes it (.5, 1., 1e3: not TOML), else the text. For a text
-    key (`text`) the text itself unless it is a TOML string (geometry.path=1.5 is the file '1.5')."""
-    try:
-        parsed = tomllib.loads(f"v = {raw}")
-    except tomllib.TOMLDecodeError:
-        parsed = None
-    if parsed is not None and list(parsed) == ["v"]:         # one value, not a value and further TOML lines
-        value = parsed["v"]
-        return value if not text or isinstance(value, str) else raw
-    if text:
-        return raw
-    try:
-        return float(raw)  # a NaN is refused with the key by the field check, like TOML's nan
-    except ValueError:
-        return raw
-
-
-def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, float):
-        if math.isinf(v):
-            return "inf" if v > 0 else "-inf"
-        return repr(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    return str(v)
 
 
 DEFAULT_SCENE_FILE = "paper_perpendicular.toml"

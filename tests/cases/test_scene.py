@@ -164,7 +164,8 @@ def test_readme_scene_table_states_the_defaults_of_cases_scene():
     import re
     from dataclasses import fields as dc_fields
     from pathlib import Path
-    from rollcontact.cases.scene.scene import SECTIONS, _parse_value
+    from rollcontact.cases.scene.scene import SECTIONS
+    from rollcontact.cases.scene.overrides import parse_value as _parse_value
     readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
     rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `\[(\w+)\]` \|.*\| (.*) \|$", readme, re.M)}
     assert set(rows) == set(SECTIONS)
