@@ -13,12 +13,23 @@ and their creepages (docs/theory.md §12.5, docs/wheelrail.md).
 
 Coordinates (docs/wheelrail.md): track x along the direction of travel, y to the left, z upwards; a profile's y
 is positive towards the field side, z upwards. Units: mm, N, MPa, rad, s.
+
+The geometry (profile, placement, wheel, search, patch) needs numpy and scipy only; `solve` brings in the contact
+solvers and is imported on first use of its names.
 """
 from rollcontact.solver.wheelrail.profile import Profile
 from rollcontact.solver.wheelrail.placement import RailPlacement, WheelPlacement, place_rail
 from rollcontact.solver.wheelrail.wheel import WheelPosition
 from rollcontact.solver.wheelrail.search import ContactSearch, PatchFrame
-from rollcontact.solver.wheelrail.solve import PatchResult, WheelRailParams, WheelRailResult, solve_wheel
+
+_SOLVE = ("PATCH_SOLVERS", "PatchProblem", "PatchResult", "WheelRailParams", "WheelRailResult", "solve_wheel")
 
 __all__ = ["Profile", "RailPlacement", "WheelPlacement", "place_rail", "WheelPosition", "ContactSearch",
-           "PatchFrame", "PatchResult", "WheelRailParams", "WheelRailResult", "solve_wheel"]
+           "PatchFrame", *_SOLVE]
+
+
+def __getattr__(name):
+    if name in _SOLVE:
+        from rollcontact.solver.wheelrail import solve
+        return getattr(solve, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
