@@ -208,7 +208,8 @@ class Scene(SceneLimits):
         return self.wheelrail != WheelRail()
 
     def _wheelrail_checked(self, data: dict, run_limits: bool) -> "Scene":
-        """The checks of a [wheelrail] scene (cases.scene.wheelrail), its files' checksums and default grid."""
+        """The checks of a [wheelrail] scene (cases.scene.wheelrail), its files' checksums and default grid (not the
+        grid's least resolution: a flange root's contact is narrow by nature; the run reports each patch's cells)."""
         from rollcontact.cases.scene import wheelrail
         wheelrail.check_sections(data)
         wheelrail.check_keys(self)
@@ -217,7 +218,6 @@ class Scene(SceneLimits):
             self.derived = frozenset(filled)
             self._resolve_resolution()
             wheelrail.check_coverage(self)
-            self._check_resolution()
         return self
 
     @property
