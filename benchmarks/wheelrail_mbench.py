@@ -1,0 +1,265 @@
+"""The Manchester Contact Benchmark, case A-2.2, against the reference program's published results (docs/wheelrail.md).
+
+    .venv/bin/python benchmarks/wheelrail_mbench.py [--quick] [-o DIR]
+    .venv/bin/python benchmarks/wheelrail_mbench.py --extract CONTACT_EXAMPLES_DIR   (maintenance, see below)
+
+S1002 wheels on UIC60 rails inclined 1:40 (the benchmark's profiles, cases/data/wheelrail), 10 kN per wheel, mu = 0.3,
+G = 82 GPa, nu = 0.28, V = 2 m/s; the wheelset displaced laterally by 0-10 mm in 0.5 mm steps and yawed by 0-24 mrad
+with it (y and yaw together), with the roll angle and the angular velocity that CONTACT's authors found for the
+balanced wheelset: the 21 cases of each of CONTACT's decks mbench_a22_left.inp and mbench_a22_right.inp, grid 0.2 x
+0.2 mm as there. Each case is run as a [wheelrail] scene (the shipped scene mbench_s1002_uic60.toml with side, y,
+yaw, roll and omega set) and compared with CONTACT's reference output (*.ref_out), transcribed in
+tests/data/wheelrail/mbench_a22_contact.csv (CONTACT's own numbers and conventions: forces on the rail, z down,
+left-side profile coordinates towards the track centre; `to_rollcontact` converts them). The benchmark paper's tables
+(Shackleton & Iwnicki 2008) are not reproduced here: its results are given as figures; the comparison is with the
+reference program's output for the same cases.
+
+Printed and written to DIR (default results/wheelrail_mbench/): per case the contact position on the rail and the
+wheel, contact angle, rolling radius, normal force, tangential forces, spin moment, peak pressure and the wheelset's
+height, both codes, and the largest differences; the figure mbench_contact_points.png/.pdf (contact positions on
+rail and wheel, the rolling radius difference of the wheelset r_left - r_right, against y, both codes) and
+mbench.json. --quick: 6 cases. docs/wheelrail.md's tables come from this command.
+
+--extract DIR writes tests/data/wheelrail/mbench_a22_contact.csv from DIR/mbench_a22_left.ref_out and
+mbench_a22_right.ref_out (a checkout of github.com/eve70a/CONTACT, examples/; Apache License 2.0).
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+from pathlib import Path
+import platform
+import re
+import time
+
+import numpy as np
+
+import rollcontact
+
+ROOT = Path(__file__).resolve().parents[1]
+REFERENCE = ROOT / "tests" / "data" / "wheelrail" / "mbench_a22_contact.csv"
+SCENE = ROOT / "cases" / "mbench_s1002_uic60.toml"
+COLUMNS = ("side", "case", "y_ws", "yaw", "roll", "vpitch", "vx", "z_ws", "FX_tr", "FY_tr", "FZ_tr", "n_patches",
+           "x_tr", "y_r", "z_r", "delta", "x_w", "y_w", "z_w", "veloc", "cksi", "ceta", "cphi", "FN", "FX", "FS",
+           "MN", "approach", "pmax", "ncon")
+QUICK = {("right", 3), ("right", 9), ("right", 17), ("left", 5), ("left", 13), ("left", 21)}
+
+
+def parse_ref_out(path) -> list[dict]:
+    """The cases of a CONTACT module-1 output file: wheelset state, total forces and the first patch's data."""
+    lines = Path(path).read_text().splitlines()
+    cases, case, patch = [], None, None
+
+    def values(i):
+        return [float(v) for v in lines[i + 1].split()]
+
+    for i, line in enumerate(lines):
+        m = re.match(r"\s*Case\s+(\d+)", line)
+        if m:
+            case = {"case": int(m.group(1)), "n_patches": 0}
+            cases.append(case)
+        elif "S_WS        Y_WS" in line:
+            v = values(i)
+            case.update(y_ws=v[1], z_ws=v[2], roll=v[3], yaw=v[4])
+        elif "VX_WS" in line:
+            v = values(i)
+            case.update(vx=v[0], vpitch=v[5])
+        elif "FX(TR)      FY(TR)" in line:
+            case.update(zip(("FX_tr", "FY_tr", "FZ_tr"), values(i)[:3]))
+        elif "DATA FOR CONTACT PATCH" in line:
+            case["n_patches"] += 1
+            patch = case if case["n_patches"] == 1 else {}
+        elif "XCP(TR)     YCP(TR)" in line:
+            patch.update(zip(("x_tr", "y_tr", "z_tr", "delta", "y_r", "z_r"), values(i)))
+        elif "XCP(W)      YCP(W)" in line:
+            patch.update(zip(("x_w", "y_w", "z_w"), values(i)))
+        elif "CHI         DQ" in line:
+            patch.update(zip(("veloc", "cksi", "ceta", "cphi"), values(i)[2:6]))
+        elif re.match(r"\s*FN\s+FX\s+FS\s+MN", line):
+            patch.update(zip(("FN", "FX", "FS", "MN"), values(i)[:4]))
+        elif "APPROACH     PMAX" in line:
+            patch.update(approach=values(i)[3], pmax=values(i)[4])
+        elif "NPOT   NCON" in line:
+            patch["ncon"] = values(i)[1]
+    return cases
+
+
+def extract(folder: Path):
+    rows = []
+    for side in ("left", "right"):
+        for c in parse_ref_out(folder / f"mbench_a22_{side}.ref_out"):
+            rows.append({"side": side, **c})
+    REFERENCE.parent.mkdir(parents=True, exist_ok=True)
+    with open(REFERENCE, "w", newline="") as fh:
+        fh.write("# CONTACT (github.com/eve70a/CONTACT, Apache-2.0), examples/mbench_a22_{left,right}.ref_out, commit "
+                 "d431cdb: the Manchester benchmark case A-2.2 as CONTACT solved it; CONTACT's conventions (forces on "
+                 "the rail; z down; a left side's y_r, y_w towards the track centre). Written by "
+                 "benchmarks/wheelrail_mbench.py --extract.\n")
+        w = csv.DictWriter(fh, fieldnames=COLUMNS, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    print(f"{len(rows)} cases written to {REFERENCE}")
+
+
+def reference_cases() -> list[dict]:
+    """The rows of the reference CSV, numbers parsed."""
+    with open(REFERENCE) as fh:
+        rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    return [{k: (v if k == "side" else float(v)) for k, v in r.items()} for r in rows]
+
+
+def scene_of(row, base=None):
+    """The [wheelrail] scene of a reference case: CONTACT's y_ws (to the right) is the right wheel's y towards its
+    field side and the left wheel's away from it; its yaw (about z down) is minus rollcontact's (about z up); roll
+    (about x) is the same; its VPITCH (about the axle, y to the right) is minus omega."""
+    base = base or rollcontact.load_scene(SCENE)
+    sign = 1.0 if row["side"] == "right" else -1.0
+    return base.with_overrides({"wheelrail.side": row["side"], "wheelrail.y": sign * row["y_ws"],
+                                "wheelrail.yaw": -row["yaw"], "wheelrail.roll": row["roll"],
+                                "wheelrail.omega": -row["vpitch"], "wheelrail.speed": row["vx"]})
+
+
+def to_rollcontact(row) -> dict:
+    """CONTACT's numbers of a case in rollcontact's conventions (forces on the wheel; profile y to the field side;
+    z_ws up; the largest patch's values)."""
+    sign = 1.0 if row["side"] == "right" else -1.0
+    return {"y_rail": sign * row["y_r"], "y_wheel": sign * row["y_w"], "contact_angle": row["delta"],
+            "Fn": row["FN"], "Fx": -row["FX"], "Fy": row["FS"], "Mz": row["MN"], "pmax": row["pmax"],
+            "xi": -row["cksi"], "eta": row["ceta"], "phi": row["cphi"], "z_ws": -row["z_ws"],
+            "F_track_x": -row["FX_tr"], "F_track_y": row["FY_tr"], "F_track_z": row["FZ_tr"],
+            "n_patches": int(row["n_patches"])}
+
+
+def ours(result) -> dict:
+    """rollcontact's values of a case: its largest patch's and the totals."""
+    s = result.summary
+    k = int(np.argmax(s["patch_Fn"]))
+    pick = {name: float(np.atleast_1d(s["patch_" + name])[k]) for name in
+            ("y_rail", "y_wheel", "contact_angle", "rolling_radius", "Fn", "Fx", "Fy", "Mz", "pmax", "xi", "eta",
+             "phi")}
+    pick.update({name: float(s[name]) for name in ("z_ws", "F_track_x", "F_track_y", "F_track_z")})
+    pick["n_patches"] = int(s["n_patches"])
+    pick["cpu_time"] = float(s["cpu_time"])
+    return pick
+
+
+def rolling_radius(wheel_profile, radius, y_w):
+    """The wheel's radius (mm) at its profile coordinate y_w by rollcontact's spline of the profile."""
+    return radius - float(wheel_profile(y_w))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--quick", action="store_true", help="6 cases instead of 42")
+    ap.add_argument("-o", "--output", default=str(ROOT / "results" / "wheelrail_mbench"), help="output folder")
+    ap.add_argument("--extract", metavar="CONTACT_EXAMPLES_DIR", help="write the reference CSV (maintenance)")
+    args = ap.parse_args()
+    if args.extract:
+        extract(Path(args.extract))
+        return
+    from rollcontact.cases.scene.wheelrail import geometry
+    out = Path(args.output)
+    out.mkdir(parents=True, exist_ok=True)
+    base = rollcontact.load_scene(SCENE)
+    wheel = geometry(base.wheelrail)[1]
+    rows = [r for r in reference_cases() if not args.quick or (r["side"], int(r["case"])) in QUICK]
+    rollcontact.run(scene_of(rows[0], base))                      # warm-up: numba compiled or loaded
+    records = []
+    for row in rows:
+        result = rollcontact.run(scene_of(row, base))
+        if result.status != "complete":
+            raise SystemExit(f"{row['side']} case {int(row['case'])}: {result.error}")
+        ref, mine = to_rollcontact(row), ours(result)
+        ref["rolling_radius"] = rolling_radius(wheel.profile, wheel.radius, ref["y_wheel"])
+        records.append({"side": row["side"], "case": int(row["case"]), "y_ws": row["y_ws"], "yaw": row["yaw"],
+                        "contact": ref, "rollcontact": mine})
+    table = report(records)
+    print(table)
+    (out / "mbench.md").write_text(table + "\n")
+    meta = {"machine": platform.node(), "python": platform.python_version(), "date": time.strftime("%Y-%m-%d %H:%M"),
+            "load": list(_load()), "cases": records}
+    (out / "mbench.json").write_text(json.dumps(meta, indent=1))
+    for path in figure(records, base, out):
+        print(path)
+
+
+def _load():
+    try:
+        import os
+        return os.getloadavg()
+    except OSError:
+        return (math.nan,) * 3
+
+
+def report(records) -> str:
+    """A markdown table per case and the largest differences (outside CONTACT's combined two-point patch)."""
+    head = ("| side | y_ws (mm) | patches | rail y (mm) | wheel y | angle (rad) | Fn (N) | Fx (N) | Fy (N) | Mz (N mm) "
+            "| pmax (MPa) | z_ws (mm) |\n|---|---|---|---|---|---|---|---|---|---|---|---|")
+    lines = [head]
+    worst = {}
+    for r in records:
+        c, m = r["contact"], r["rollcontact"]
+
+        def cell(name, fmt):
+            return f"{m[name]:{fmt}} / {c[name]:{fmt}}"
+        lines.append(f"| {r['side']} | {r['y_ws']:.1f} | {m['n_patches']} / {c['n_patches']} | {cell('y_rail', '.3f')} | "
+                     f"{cell('y_wheel', '.3f')} | {cell('contact_angle', '.4f')} | {cell('Fn', '.0f')} | "
+                     f"{cell('Fx', '.1f')} | {cell('Fy', '.1f')} | {cell('Mz', '.0f')} | {cell('pmax', '.0f')} | "
+                     f"{cell('z_ws', '.4f')} |")
+        if m["n_patches"] != c["n_patches"]:
+            continue
+        mu_fn = 0.3 * c["Fn"]
+        for name, diff in (("y_rail (mm)", abs(m["y_rail"] - c["y_rail"])),
+                           ("contact angle (rad)", abs(m["contact_angle"] - c["contact_angle"])),
+                           ("rolling radius (mm)", abs(m["rolling_radius"] - c["rolling_radius"])),
+                           ("Fn (%)", 100 * abs(m["Fn"] / c["Fn"] - 1)),
+                           ("Fx (% of mu Fn)", 100 * abs(m["Fx"] - c["Fx"]) / mu_fn),
+                           ("Fy (% of mu Fn)", 100 * abs(m["Fy"] - c["Fy"]) / mu_fn),
+                           ("pmax (%)", 100 * abs(m["pmax"] / c["pmax"] - 1)),
+                           ("z_ws (mm)", abs(m["z_ws"] - c["z_ws"]))):
+            key = name
+            if key not in worst or diff > worst[key][0]:
+                worst[key] = (diff, f"{r['side']} y = {r['y_ws']:.1f}")
+    lines.append("")
+    lines.append("each cell: rollcontact / CONTACT; largest differences (cases with the same number of patches): "
+                 + "; ".join(f"{k} {v[0]:.3g} ({v[1]})" for k, v in worst.items()))
+    cpu = [r["rollcontact"]["cpu_time"] for r in records]
+    lines.append(f"rollcontact CPU time per case: median {np.median(cpu):.3f} s, largest {max(cpu):.3f} s")
+    return "\n".join(lines)
+
+
+def figure(records, base, out):
+    from rollcontact.cases.plots.common import plt, save_figure
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), layout="constrained")
+    for side, colour in (("left", "C0"), ("right", "C3")):
+        rs = [r for r in records if r["side"] == side]
+        y = [r["y_ws"] for r in rs]
+        for ax, name in zip(axes[:2], ("y_rail", "y_wheel")):
+            ax.plot(y, [r["rollcontact"][name] for r in rs], "o-", color=colour, ms=4, label=f"{side}, rollcontact")
+            ax.plot(y, [r["contact"][name] for r in rs], "x", color="k", ms=6,
+                    label="CONTACT" if side == "right" else None)
+    both = {}
+    for r in records:
+        both.setdefault(r["y_ws"], {})[r["side"]] = r
+    ys = sorted(y for y, d in both.items() if len(d) == 2)
+    if ys:
+        for code, style in (("rollcontact", "o-"), ("contact", "x")):
+            axes[2].plot(ys, [both[y]["left"][code]["rolling_radius"] - both[y]["right"][code]["rolling_radius"]
+                              for y in ys], style, color="k" if code == "contact" else "C2",
+                         label="CONTACT" if code == "contact" else "rollcontact")
+    axes[0].set_ylabel("contact position on the rail, y_r (mm, towards the field side)")
+    axes[1].set_ylabel("contact position on the wheel, y_w (mm, towards the field side)")
+    axes[2].set_ylabel("rolling radius difference r_left - r_right (mm)")
+    for ax in axes:
+        ax.set_xlabel("wheelset lateral displacement y_ws (mm, to the right; yaw 2.4 mrad per mm)")
+        ax.grid(alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=8)
+    fig.suptitle("Manchester Contact Benchmark, case A-2.2: S1002 on UIC60 1:40, 10 kN per wheel", fontsize=10)
+    return save_figure(fig, out, "mbench_contact_points", overwrite=True)
+
+
+if __name__ == "__main__":
+    main()
