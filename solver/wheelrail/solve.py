@@ -48,7 +48,10 @@ class WheelRailParams:
     """tol: relative tolerance of the normal (NormCG) and steady tangential solvers; max_iter: their iteration
     budget; force_tol: the vertical force balance, relative to Fz; combine: interpenetration regions closer than this
     (mm) form one patch; coarse_cells: cells across a patch in the coarse pass; max_outer: normal / tangential
-    alternations; threads: FFTW threads; fidelity: the tangential solver of each patch (PATCH_SOLVERS)."""
+    alternations; threads: FFTW threads; fidelity: the tangential solver of each patch (PATCH_SOLVERS); planner: the
+    FFTW planner of the patch operators. FFTW_ESTIMATE: every position has patch grids of new shapes, and measuring
+    their plans cost 0.4-1.2 s per position (Manchester profiles, 0.2 mm grid, the wisdom cache empty) against
+    runs of 0.05-0.3 s; estimated plans run those positions 5-30 % slower once measured plans are cached."""
     tol: float = 1e-8
     max_iter: int = 500
     force_tol: float = 1e-6
@@ -58,6 +61,7 @@ class WheelRailParams:
     threads: int = 1
     fidelity: str = "bem"
     search_step: float = SEARCH_STEP
+    planner: str = "FFTW_ESTIMATE"
 
     def __post_init__(self):
         if not (0 < self.tol < 1e-2):
@@ -165,7 +169,8 @@ class _Patch:
         self.rail_t = rail_distance(search.rail, frame, grid.y)
         if np.any(np.isnan(self.rail_t)):
             raise InputError(search._uncovered(float(frame.point(0.0, grid.y[0])[1]), 0.0))
-        self.operator = HalfSpaceOperator(grid, materials, threads=params.threads, coupling=False)
+        self.operator = HalfSpaceOperator(grid, materials, threads=params.threads, coupling=False,
+                                          planner=params.planner)
         self.materials = materials
         self.normal = None
         self.t_w = None
