@@ -145,6 +145,85 @@ def ours(result) -> dict:
     return pick
 
 
+class _SurfaceSlip:
+    """The steady problem of a patch with a given rigid slip field (2, ny, nx) in place of (xi - phi s, eta + phi x)."""
+
+    def __init__(self, problem, field):
+        self.__dict__.update(problem.__dict__)
+        self._problem, self._field = problem, field
+
+    def __getattr__(self, name):
+        return getattr(self._problem, name)
+
+    def rigid_slip(self, xi, eta, phi, pressure=None):
+        return self._field.copy()
+
+
+def planar_study(scene) -> list[dict]:
+    """Where the planar patch errs: per patch of the scene, the forces with the rigid slip evaluated on the plane
+    (what rollcontact and CONTACT's planar mode solve) and on the actual surfaces (the wheel's undeformed surface
+    point of each cell, projected on the rail's local tangent there, as CONTACT's D = 3), on the same pressure; and the
+    total force with each row's normal and tangential loads turned by the rail's local angle instead of the patch's
+    one. Side frame (the right wheel mirrored); forces on the wheel, N."""
+    from rollcontact.bem.grid import Grid
+    from rollcontact.cases.scene import wheelrail as W
+    from rollcontact.solver.creep.steady import SPIN_OFFSET, SteadyRolling, solve_steady
+    from rollcontact.solver.wheelrail.patch import patch_gap, rail_distance
+    from rollcontact.solver.wheelrail.solve import WheelRailParams, solve_wheel
+    wr = scene.wheelrail
+    rail, wheel = W.geometry(wr)
+    omega_v = W.omega_per_speed(wr)
+    pair, mu = scene.material_pair, scene.load.mu
+    dx, dy = scene.spacing
+    res = solve_wheel(rail, wheel, wr.side, wr.y, wr.Fz, omega_v, pair, mu, dx, dy, yaw=wr.yaw, roll=wr.roll,
+                      params=WheelRailParams(tol=scene.solver.tol))
+    sign = W.side_sign(wr)
+    search = W.search(wr)
+    wheel_now = search.wheel(res.dz)
+    position = search.position(res.dz)
+    out = []
+    for p in res.patches:
+        frame, g = p.frame, p.grid
+        grid = g if sign > 0 else Grid(g.nx, g.ny, g.dx, g.dy, g.i0, -(g.j0 + g.ny - 1))
+        flip = (lambda a: a) if sign > 0 else (lambda a: a[::-1])
+        pressure = flip(p.pressure)
+        X, S = grid.mesh()
+        shifted = grid.x + SPIN_OFFSET * grid.dx
+        rail_t = rail_distance(rail, frame, grid.y)
+        _, t_w = patch_gap(rail_t, wheel_now, frame, shifted, grid.y)
+        points = frame.point(X + SPIN_OFFSET * grid.dx, S) + t_w[None] * frame.e_n[:, None, None]
+        spin = omega_v * position.axle
+        v = np.cross(spin[:, None, None], points - position.centre[:, None, None], axis=0)
+        v[0] += 1.0
+        t0 = float(wheel_now.distance_along(frame.origin.reshape(3, 1), frame.e_n, start=[0.0])[0])
+        carried = np.cross(spin, frame.origin + t0 * frame.e_n - position.centre)
+        rolling = 0.5 * (1.0 - carried[0])
+        c, s = math.cos(frame.angle), math.sin(frame.angle)
+        y_rows = frame.origin[1] + grid.y * c - rail_t * s
+        local = np.arctan(rail.surface.slope(y_rows))                   # the rail's angle below each row
+        e_s = np.stack([np.zeros_like(local), np.cos(local), np.sin(local)])
+        field = np.stack([v[0], np.einsum("ij,ijk->jk", e_s, v)]) / rolling
+        problem = SteadyRolling(grid, pair)
+        planar = solve_steady(problem, pressure, mu, *_side_creepages(p, sign))
+        surface = solve_steady(_SurfaceSlip(problem, field), pressure, mu)
+        rows_n = pressure.sum(axis=1) * grid.cell_area
+        rows_s = planar.traction[1].sum(axis=1) * grid.cell_area
+        turned_y = float(np.sum(rows_s * np.cos(local) - rows_n * np.sin(local)))
+        turned_z = float(np.sum(rows_s * np.sin(local) + rows_n * np.cos(local)))
+        flat_y = planar.force[1] * c - p.Fn * s
+        flat_z = planar.force[1] * s + p.Fn * c
+        out.append({"y_rail": p.y_rail, "angle": p.contact_angle, "spread": p.angle_spread, "Fn": p.Fn,
+                    "dFx": surface.force[0] - planar.force[0], "dFs": surface.force[1] - planar.force[1],
+                    "Fx": planar.force[0], "Fs": planar.force[1], "dFy_turn": turned_y - flat_y,
+                    "dFz_turn": turned_z - flat_z})
+    return out
+
+
+def _side_creepages(patch, sign):
+    xi, eta, phi = patch.creepages
+    return xi, sign * eta, sign * phi
+
+
 def rolling_radius(wheel_profile, radius, y_w):
     """The wheel's radius (mm) at its profile coordinate y_w by rollcontact's spline of the profile."""
     return radius - float(wheel_profile(y_w))
@@ -176,10 +255,15 @@ def main():
         records.append({"side": row["side"], "case": int(row["case"]), "y_ws": row["y_ws"], "yaw": row["yaw"],
                         "contact": ref, "rollcontact": mine})
     table = report(records)
+    study = []
+    for row in rows:
+        for patch in planar_study(scene_of(row, base)):
+            study.append({"side": row["side"], "y_ws": row["y_ws"], **patch})
+    table += "\n\n" + planar_report(study)
     print(table)
     (out / "mbench.md").write_text(table + "\n")
     meta = {"machine": platform.node(), "python": platform.python_version(), "date": time.strftime("%Y-%m-%d %H:%M"),
-            "load": list(_load()), "cases": records}
+            "load": list(_load()), "cases": records, "planar_study": study}
     (out / "mbench.json").write_text(json.dumps(meta, indent=1))
     for path in figure(records, base, out):
         print(path)
@@ -230,6 +314,20 @@ def report(records) -> str:
     return "\n".join(lines)
 
 
+def planar_report(study) -> str:
+    """The planar study's table: per patch its contact angle, the spread of the rail's angle across the contact, and
+    the force changes of the surface slip and of the rows' own angles, relative to mu Fn."""
+    lines = ["| side | y_ws (mm) | rail y (mm) | contact angle (rad) | angle spread (rad) | Fx, Fs planar (N) | "
+             "surface slip: dFx, dFs (% mu Fn) | local angles: dF_track_y, dF_track_z (% mu Fn) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in study:
+        mu_fn = 0.3 * r["Fn"]
+        lines.append(f"| {r['side']} | {r['y_ws']:.1f} | {r['y_rail']:.2f} | {r['angle']:.3f} | {r['spread']:.3f} | "
+                     f"{r['Fx']:.0f}, {r['Fs']:.0f} | {100 * r['dFx'] / mu_fn:+.2f}, {100 * r['dFs'] / mu_fn:+.2f} | "
+                     f"{100 * r['dFy_turn'] / mu_fn:+.2f}, {100 * r['dFz_turn'] / mu_fn:+.2f} |")
+    return "\n".join(lines)
+
+
 def figure(records, base, out):
     from rollcontact.cases.plots.common import plt, save_figure
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), layout="constrained")
@@ -249,15 +347,16 @@ def figure(records, base, out):
             axes[2].plot(ys, [both[y]["left"][code]["rolling_radius"] - both[y]["right"][code]["rolling_radius"]
                               for y in ys], style, color="k" if code == "contact" else "C2",
                          label="CONTACT" if code == "contact" else "rollcontact")
-    axes[0].set_ylabel("contact position on the rail, y_r (mm, towards the field side)")
-    axes[1].set_ylabel("contact position on the wheel, y_w (mm, towards the field side)")
-    axes[2].set_ylabel("rolling radius difference r_left - r_right (mm)")
+    axes[0].set_ylabel("on the rail: y_r (mm, to the field side)")
+    axes[1].set_ylabel("on the wheel: y_w (mm, to the field side)")
+    axes[2].set_ylabel("r_left - r_right (mm)")
     for ax in axes:
-        ax.set_xlabel("wheelset lateral displacement y_ws (mm, to the right; yaw 2.4 mrad per mm)")
+        ax.set_xlabel("wheelset displacement y_ws (mm, to the right)")
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=8)
-    fig.suptitle("Manchester Contact Benchmark, case A-2.2: S1002 on UIC60 1:40, 10 kN per wheel", fontsize=10)
+    fig.suptitle("Manchester Contact Benchmark, case A-2.2 (S1002 on UIC60 1:40, 10 kN per wheel, yaw 2.4 mrad per mm): "
+                 "contact positions and rolling radius difference", fontsize=10)
     return save_figure(fig, out, "mbench_contact_points", overwrite=True)
 
 

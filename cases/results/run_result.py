@@ -71,7 +71,8 @@ SUBSURFACE_NAMES = tuple(SUBSURFACE_UNITS)
 #: patch_rolling_radius: the wheel's radius at the reference; patch_Fn, patch_Fx, patch_Fy: normal force and the
 #: tangential forces along x and s; patch_Mz: moment about n at the reference; patch_xi, patch_eta, patch_phi: the
 #: creepages and spin there (Kalker's convention); patch_pmax: peak pressure; patch_length, patch_width: the contact's
-#: extent along x and s; patch_penetration: the largest interpenetration of the undeformed surfaces along n.
+#: extent along x and s; patch_penetration: the largest interpenetration of the undeformed surfaces along n;
+#: patch_angle_spread: the range of the rail's surface angle across the contact (the planar patch takes one angle).
 #: F_track_x, F_track_y, F_track_z: the total force on the wheel in the track frame (F_track_z = Fz in balance);
 #: z_ws: the wheelset centre's height above its nominal position (the axle wheel_radius above the rail's top);
 #: lowering: how far the wheel is lowered beyond its first touch of the rail; xi_nominal: the longitudinal creepage at
@@ -81,7 +82,7 @@ WHEELRAIL_SUMMARY_UNITS = {
     "n_patches": "-", "patch_y_rail": "mm", "patch_y_wheel": "mm", "patch_x": "mm", "patch_contact_angle": "rad",
     "patch_rolling_radius": "mm", "patch_Fn": "N", "patch_Fx": "N", "patch_Fy": "N", "patch_Mz": "N mm",
     "patch_xi": "-", "patch_eta": "-", "patch_phi": "1/mm", "patch_pmax": "MPa", "patch_length": "mm",
-    "patch_width": "mm", "patch_penetration": "mm", "F_track_x": "N", "F_track_y": "N", "F_track_z": "N",
+    "patch_width": "mm", "patch_penetration": "mm", "patch_angle_spread": "rad", "F_track_x": "N", "F_track_y": "N", "F_track_z": "N",
     "z_ws": "mm", "lowering": "mm", "xi_nominal": "-", "omega": "rad/s", "side": "-", "outer_iterations": "-",
     "cpu_time": "s",
 }
@@ -94,7 +95,7 @@ SUMMARY_UNITS.update(WHEELRAIL_SUMMARY_UNITS)
 PATCH_FIELD_UNITS = {"gap": "mm"}
 PATCH_UNITS = {"y_rail": "mm", "y_wheel": "mm", "x_track": "mm", "contact_angle": "rad", "rolling_radius": "mm",
                "Fn": "N", "Fx": "N", "Fy": "N", "Mz": "N mm", "xi": "-", "eta": "-", "phi": "1/mm", "pmax": "MPa",
-               "length": "mm", "width": "mm", "penetration": "mm", "dx": "mm", "dy": "mm",
+               "length": "mm", "width": "mm", "penetration": "mm", "angle_spread": "rad", "dx": "mm", "dy": "mm",
                "normal_iterations": "-", "sweeps": "-", "contact_elements": "-", "stick_elements": "-"}
 
 #: Units of every stored dataset (its 'units' attribute in HDF5).

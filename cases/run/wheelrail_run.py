@@ -28,7 +28,7 @@ from rollcontact.cases.scene.scene import Scene
 PATCH_ARRAYS = {"patch_y_rail": "y_rail", "patch_y_wheel": "y_wheel", "patch_x": "x_track",
                 "patch_contact_angle": "contact_angle", "patch_rolling_radius": "rolling_radius", "patch_Fn": "Fn",
                 "patch_Fx": "Fx", "patch_Fy": "Fs", "patch_Mz": "Mz", "patch_pmax": "pmax", "patch_length": "length",
-                "patch_width": "width", "patch_penetration": "penetration"}
+                "patch_width": "width", "patch_penetration": "penetration", "patch_angle_spread": "angle_spread"}
 
 
 def run_wheelrail(scene: Scene, *, progress=None) -> RunResult:
@@ -92,7 +92,7 @@ def _patch_data(p, with_fields: bool) -> PatchData:
     values = dict(y_rail=p.y_rail, y_wheel=p.y_wheel, x_track=p.x_track, contact_angle=p.contact_angle,
                   rolling_radius=p.rolling_radius, Fn=p.Fn, Fx=p.Fx, Fy=p.Fs, Mz=p.Mz, xi=p.creepages[0],
                   eta=p.creepages[1], phi=p.creepages[2], pmax=p.pmax, length=p.length, width=p.width,
-                  penetration=p.penetration, dx=g.dx, dy=g.dy, normal_iterations=p.normal_iterations,
+                  penetration=p.penetration, angle_spread=p.angle_spread, dx=g.dx, dy=g.dy, normal_iterations=p.normal_iterations,
                   sweeps=p.sweeps, contact_elements=int(p.contact.sum()), stick_elements=int(p.stick.sum()))
     fields = {}
     if with_fields:

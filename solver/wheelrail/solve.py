@@ -117,7 +117,10 @@ class PatchResult:
     rail (mm), contact, stick (bool), gap (the undeformed h, mm). creepages (xi, eta, phi) (-, -, 1/mm); forces Fn,
     Fx, Fs (N) and moment Mz about the reference point (N mm) on the wheel; pmax (MPa); length, width: the contact's
     extent along x and s (mm); penetration: the largest interpenetration of the undeformed surfaces along n (mm);
-    normal_iterations, sweeps: of the last solves."""
+    angle_spread: how much the rail's surface angle varies across the contact (rad, its largest less its smallest
+    over the contact's lateral extent): the planar patch takes one angle for all (docs/wheelrail.md, "Where the
+    planar patch becomes inaccurate"); normal_iterations, sweeps: of the last solves; frame: the patch's reference
+    point and angle in the side frame (solver.wheelrail.search.PatchFrame; a right wheel's is the mirror image's)."""
     x_track: float
     y_rail: float
     y_wheel: float
@@ -141,8 +144,10 @@ class PatchResult:
     length: float
     width: float
     penetration: float
+    angle_spread: float
     normal_iterations: int
     sweeps: int
+    frame: PatchFrame
 
 
 @dataclass
@@ -445,6 +450,9 @@ def _patch_result(search: ContactSearch, wheel, patch: _Patch, omega_per_speed) 
     length = float(X[contact].max() - X[contact].min() + grid.dx)
     width = float(S[contact].max() - S[contact].min() + grid.dy)
     u12 = patch.operator.tangential(tang.traction[0], tang.traction[1])
+    rows = contact.any(axis=1)
+    c, s = math.cos(frame.angle), math.sin(frame.angle)
+    angles = np.arctan(search.rail.surface.slope(origin[1] + grid.y[rows] * c - patch.rail_t[rows] * s))
     return PatchResult(
         x_track=float(origin[0]), y_rail=y_rail, y_wheel=y_wheel, contact_angle=float(frame.angle),
         rolling_radius=float(search.wheel_placement.rolling_radius(y_wheel)), grid=grid,
@@ -452,7 +460,8 @@ def _patch_result(search: ContactSearch, wheel, patch: _Patch, omega_per_speed) 
         contact=contact, stick=tang.stick, gap=patch.gap, creepages=tuple(tang.creepages), Fn=float(normal.force),
         Fx=float(tang.force[0]), Fs=float(tang.force[1]), Mz=float(tang.moment),
         pmax=float(np.max(normal.pressure)), length=length, width=width,
-        penetration=float(-np.min(patch.gap)), normal_iterations=int(normal.iterations), sweeps=int(tang.sweeps))
+        penetration=float(-np.min(patch.gap)), angle_spread=float(np.max(angles) - np.min(angles)),
+        normal_iterations=int(normal.iterations), sweeps=int(tang.sweeps), frame=frame)
 
 
 def _mirrored(r: PatchResult) -> PatchResult:
@@ -467,5 +476,5 @@ def _mirrored(r: PatchResult) -> PatchResult:
         rolling_radius=r.rolling_radius, grid=grid, pressure=flip(r.pressure), u_z=flip(r.u_z),
         traction=vec(r.traction), slip=vec(r.slip), u12=vec(r.u12), contact=flip(r.contact), stick=flip(r.stick),
         gap=flip(r.gap), creepages=(xi, -eta, -phi), Fn=r.Fn, Fx=r.Fx, Fs=-r.Fs, Mz=-r.Mz, pmax=r.pmax,
-        length=r.length, width=r.width, penetration=r.penetration, normal_iterations=r.normal_iterations,
-        sweeps=r.sweeps)
+        length=r.length, width=r.width, penetration=r.penetration, angle_spread=r.angle_spread,
+        normal_iterations=r.normal_iterations, sweeps=r.sweeps, frame=r.frame)
