@@ -1,6 +1,6 @@
 """The Manchester Contact Benchmark, case A-2.2, against the reference program's published results (docs/wheelrail.md).
 
-    .venv/bin/python benchmarks/wheelrail_mbench.py [--quick] [-o DIR]
+    .venv/bin/python benchmarks/wheelrail_mbench.py [--quick] [-o DIR] [--sweep-dir DIR]
     .venv/bin/python benchmarks/wheelrail_mbench.py --extract CONTACT_EXAMPLES_DIR   (maintenance, see below)
 
 S1002 wheels on UIC60 rails inclined 1:40 (the benchmark's profiles, cases/data/wheelrail), 10 kN per wheel, mu = 0.3,
@@ -18,7 +18,12 @@ Printed and written to DIR (default results/wheelrail_mbench/): per case the con
 wheel, contact angle, rolling radius, normal force, tangential forces, spin moment, peak pressure and the wheelset's
 height, both codes, and the largest differences; the figure mbench_contact_points.png/.pdf (contact positions on
 rail and wheel, the rolling radius difference of the wheelset r_left - r_right, against y, both codes) and
-mbench.json. --quick: 6 cases. docs/wheelrail.md's tables come from this command.
+mbench.json. Also, per patch, the planar study (`planar_study`: the forces with the rigid slip on the actual surfaces
+and with each row's forces turned by the rail's own angle there). Before that, the Hertz check of two crowns (the
+test of tests/cases/test_wheelrail_run.py on two grids), and after it the shipped scene's sweep of wheelrail.y over
+0-10 mm in 0.5 mm steps (run files in --sweep-dir, default results/wheelrail_sweep/) with its contact-point diagram
+and forces (DIR/wheelrail_sweep_*.png). --quick: 6 benchmark cases and 5 sweep positions. docs/wheelrail.md's tables
+and figures come from this command (with -o docs/figures/wheelrail).
 
 --extract DIR writes tests/data/wheelrail/mbench_a22_contact.csv from DIR/mbench_a22_left.ref_out and
 mbench_a22_right.ref_out (a checkout of github.com/eve70a/CONTACT, examples/; Apache License 2.0).
@@ -234,6 +239,8 @@ def main():
     ap.add_argument("--quick", action="store_true", help="6 cases instead of 42")
     ap.add_argument("-o", "--output", default=str(ROOT / "results" / "wheelrail_mbench"), help="output folder")
     ap.add_argument("--extract", metavar="CONTACT_EXAMPLES_DIR", help="write the reference CSV (maintenance)")
+    ap.add_argument("--sweep-dir", default=str(ROOT / "results" / "wheelrail_sweep"),
+                    help="folder of the y sweep's run files")
     args = ap.parse_args()
     if args.extract:
         extract(Path(args.extract))
@@ -243,6 +250,7 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     base = rollcontact.load_scene(SCENE)
     wheel = geometry(base.wheelrail)[1]
+    hertz = hertz_check(out)
     rows = [r for r in reference_cases() if not args.quick or (r["side"], int(r["case"])) in QUICK]
     rollcontact.run(scene_of(rows[0], base))                      # warm-up: numba compiled or loaded
     records = []
@@ -254,7 +262,7 @@ def main():
         ref["rolling_radius"] = rolling_radius(wheel.profile, wheel.radius, ref["y_wheel"])
         records.append({"side": row["side"], "case": int(row["case"]), "y_ws": row["y_ws"], "yaw": row["yaw"],
                         "contact": ref, "rollcontact": mine})
-    table = report(records)
+    table = hertz + "\n\n" + report(records)
     study = []
     for row in rows:
         for patch in planar_study(scene_of(row, base)):
@@ -267,6 +275,46 @@ def main():
     (out / "mbench.json").write_text(json.dumps(meta, indent=1))
     for path in figure(records, base, out):
         print(path)
+    for path in y_sweep(base, Path(args.sweep_dir), out, 5 if args.quick else 21):
+        print(path)
+
+
+def hertz_check(out: Path) -> str:
+    """Two crowns (wheel 150 mm, rail 300 mm) on a cylinder of radius 460 mm under 10 kN against Hertz (the test
+    test_two_crowns_on_a_cylinder_give_hertz_ellipse), on two grids: the errors of the semi-axes (from the pressure's
+    second moments), the approach and p0 (%)."""
+    import sys
+    sys.path.insert(0, str(ROOT / "tests" / "cases"))
+    from test_wheelrail_run import crown_scene
+    from rollcontact.solver.analytic import HertzEllipse
+    lines = ["| dx x dy (mm) | grid | a | b | approach | p0 |", "|---|---|---|---|---|---|"]
+    for dx, dy in ((0.2, 0.1), (0.1, 0.05)):
+        scene = crown_scene(out, dx=dx, dy=dy)
+        r = rollcontact.run(scene)
+        patch, s = r.patches[0], r.summary
+        p = patch.fields["p"]
+        X, Y = np.meshgrid(patch.x, patch.y)
+        a, b = (math.sqrt(5.0 * float((p * V ** 2).sum() / p.sum())) for V in (X, Y))
+        h = HertzEllipse(460.0, 100.0, scene.material_pair.E_star, 10000.0)
+        err = [100 * (v / w - 1) for v, w in ((a, h.a), (b, h.b), (s["lowering"], h.approach), (s["patch_pmax"][0], h.p0))]
+        lines.append(f"| {dx} x {dy} | {p.shape[1]} x {p.shape[0]} | " + " | ".join(f"{e:+.3f} %" for e in err) + " |")
+    for name in ("wheel.txt", "rail.csv"):
+        (out / name).unlink(missing_ok=True)
+    lines.append(f"Hertz: a = {h.a:.4f} mm, b = {h.b:.4f} mm, approach {h.approach:.5f} mm, p0 = {h.p0:.1f} MPa")
+    return "\n".join(lines)
+
+
+def y_sweep(base, folder: Path, out: Path, count: int) -> list:
+    """The shipped scene's sweep of wheelrail.y over 0-10 mm (`count` positions) on 2 workers, and its figures."""
+    from rollcontact.cases.plots.wheelrail_figures import plot_wheelrail_folder
+    rollcontact.sweep(base, {"wheelrail.y": f"0:10:{count}"}, folder, jobs=2, overwrite=True)
+    paths = plot_wheelrail_folder(folder, out, overwrite=True)
+    renamed = []
+    for p in paths:
+        target = out / p.name.replace(folder.name, "wheelrail_sweep", 1)
+        p.replace(target)
+        renamed.append(target)
+    return renamed
 
 
 def _load():
