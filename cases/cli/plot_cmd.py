@@ -43,12 +43,11 @@ def _creep_run(target: Path):
 def _wheelrail_run(target: Path):
     """The result of a [wheelrail] run file (cases.plots.wheelrail_figures), else None."""
     from rollcontact.cases.plots.common import PlotError
-    from rollcontact.cases.plots.wheelrail_figures import is_wheelrail_run
-    from rollcontact.cases.results.hdf5 import read_run_file
-    if not target.is_file():
+    from rollcontact.cases.results.hdf5 import read_run_file, stored_summary
+    stored = stored_summary(target) if target.is_file() else None
+    if stored is None or "n_patches" not in stored["summary"]:
         return None
-    data = read_run_file(target, PlotError, str(target))
-    return data if is_wheelrail_run(data) else None
+    return read_run_file(target, PlotError, str(target))
 
 
 def plot_handler(args) -> int:
@@ -64,10 +63,9 @@ def plot_handler(args) -> int:
             if args.step is not None:
                 raise PlotError("--step applies to a run file, not to a sweep folder")
             paths = plot_folder(target, out_dir, notes, overwrite=args.overwrite)
-        elif _wheelrail_run(target) is not None:
+        elif (wheelrail := _wheelrail_run(target)) is not None:
             from rollcontact.cases.plots.wheelrail_figures import plot_wheelrail_run
-            paths = plot_wheelrail_run(_wheelrail_run(target), out_dir, target.stem, overwrite=args.overwrite,
-                                       notes=notes)
+            paths = plot_wheelrail_run(wheelrail, out_dir, target.stem, overwrite=args.overwrite, notes=notes)
         elif _creep_run(target) is not None:
             from rollcontact.cases.plots.creep_figures import plot_creep_run
             paths = plot_creep_run(_creep_run(target), out_dir, target.stem, overwrite=args.overwrite)
