@@ -8,14 +8,16 @@ and their creepages (docs/theory.md §12.5, docs/wheelrail.md).
     search      the vertical gap along the profiles, its interpenetration regions and the contact patches with
                 their reference points, contact angles and tangent planes
     patch       the undeformed gap h(x, s) of a patch in its tangent plane and the creepages there
+    balance     a patch being solved, and the wheel's lowering at which the patches carry the vertical load
+    layout      where the patches go: the coarse passes, their load centres, the grids over their interpenetration
     solve       one wheel on its rail: the vertical position for the load, each patch's normal and steady
                 tangential problem, the forces in track coordinates
 
 Coordinates (docs/wheelrail.md): track x along the direction of travel, y to the left, z upwards; a profile's y
 is positive towards the field side, z upwards. Units: mm, N, MPa, rad, s.
 
-The geometry (profile, placement, wheel, search, patch) needs numpy and scipy only; `solve` brings in the contact
-solvers and is imported on first use of its names.
+The geometry (profile, placement, wheel, search, patch) needs numpy and scipy only; balance, layout and solve bring
+in the contact solvers (`solve` is imported on first use of its names here).
 """
 from rollcontact.solver.wheelrail.profile import Profile
 from rollcontact.solver.wheelrail.placement import RailPlacement, WheelPlacement, place_rail

@@ -3,13 +3,13 @@ and each patch's normal and steady tangential problem in its own tangent plane.
 
 Algorithm, for the wheelset at (y, yaw, roll) with the vertical load Fz on this wheel:
 1. the contact search (solver.wheelrail.search) and a Hertz estimate of the lowering dz beyond the first touch;
-2. a coarse pass: the patches at twice that estimate on grids of about PatchParams.coarse_cells cells across, and
-   the dz at which their normal forces carry Fz; a second one over the patches at 1.1 times that dz, their
-   references moved to the load centres of the first (`_centred`), gives the load centres of the patches;
-3. the patches at 1.1 times the coarse dz, with those references, each on a grid of the scene's dx, dy over its interpenetration region
-   there plus one cell (the contact lies inside the interpenetration region, since the elastic displacements of a
-   compressive pressure are positive); the grids are built again, larger, should the final dz exceed it;
-4. vertical balance: sum over the patches of (Fn cos delta + Fs sin delta) = Fz (side frame; Fs the lateral
+2. a coarse pass: the patches at twice that estimate on grids of about WheelRailParams.coarse_cells cells across,
+   and the dz at which their normal forces carry Fz; a second one over the patches at 1.1 times that dz, their
+   references moved to the load centres of the first, gives the load centres of the patches (solver.wheelrail.layout);
+3. the patches at 1.1 times the coarse dz, with those references, each on a grid of the scene's dx, dy over its
+   interpenetration region there plus one cell (the contact lies inside the interpenetration region, since the
+   elastic displacements of a compressive pressure are positive); built again, larger, should the final dz exceed it;
+4. vertical balance (solver.wheelrail.balance): sum over the patches of (Fn cos delta + Fs sin delta) = Fz (side frame; Fs the lateral
    tangential force, delta the contact angle). For fixed ratios Fs/Fn the normal problems alone fix dz (NormCG with
    the gap of the lowered wheel, recomputed exactly for every trial dz; a power-law and secant iteration on the total
    force); then each patch's steady tangential problem (the `fidelity` solver of PATCH_SOLVERS) gives new ratios,
@@ -35,8 +35,9 @@ from rollcontact.bem.grid import Grid
 from rollcontact.bem.materials import MaterialPair
 from rollcontact.bem.operator import HalfSpaceOperator
 from rollcontact.solver.creep.steady import SteadyParams, SteadyResult, SteadyRolling, solve_steady
-from rollcontact.solver.normal import NormalParams, solve_normal
-from rollcontact.solver.wheelrail.patch import creepages, patch_gap, rail_distance
+from rollcontact.solver.wheelrail.balance import PatchState, vertical
+from rollcontact.solver.wheelrail.layout import centred, coarse_pass, hertz_estimate, patch_grid
+from rollcontact.solver.wheelrail.patch import creepages
 from rollcontact.solver.wheelrail.placement import RailPlacement, WheelPlacement
 from rollcontact.solver.wheelrail.search import COMBINE_DISTANCE, SEARCH_STEP, ContactSearch, PatchFrame
 
@@ -166,48 +167,6 @@ class WheelRailResult:
     grids: int
 
 
-class _Patch:
-    """A patch being solved: its frame (side frame), grid, operator, the rail's distance along n, and the state."""
-
-    def __init__(self, search: ContactSearch, frame: PatchFrame, grid: Grid, materials, params):
-        self.frame, self.grid, self.params = frame, grid, params
-        self.rail_t = rail_distance(search.rail, frame, grid.y)
-        if np.any(np.isnan(self.rail_t)):
-            raise InputError(search._uncovered(float(frame.point(0.0, grid.y[0])[1]), 0.0))
-        self.operator = HalfSpaceOperator(grid, materials, threads=params.threads, coupling=False,
-                                          planner=params.planner)
-        self.materials = materials
-        self.normal = None
-        self.t_w = None
-        self.gap = None
-        self.tangential = None
-        self.problem = None
-        self.dz_last = 0.0
-
-    def solve_normal(self, wheel):
-        gap, t_w = patch_gap(self.rail_t, wheel, self.frame, self.grid.x, self.grid.y, start=self.t_w)
-        if np.any(np.isnan(gap)):
-            raise InputError("a patch grid leaves the wheel profile: the wheel profile does not cover the contact")
-        p = self.params
-        initial = None if self.normal is None or not np.any(self.normal.pressure > 0) else self.normal.pressure
-        self.normal = solve_normal(self.operator, gap, approach=0.0, initial=initial,
-                                   params=NormalParams(tol=p.tol, max_iter=p.max_iter))
-        self.t_w, self.gap = t_w, gap
-        return self.normal.force
-
-    def wheel_t_at_origin(self, wheel) -> float:
-        """t_wheel (mm) at the reference point: the wheel's surface point O + t e_n."""
-        return float(wheel.distance_along(self.frame.origin.reshape(3, 1), self.frame.e_n, start=[0.0])[0])
-
-    @property
-    def loaded(self) -> bool:
-        return self.normal is not None and bool(np.any(self.normal.pressure > 0))
-
-    def on_border(self) -> bool:
-        p = self.normal.pressure > 0
-        return bool(p[0].any() or p[-1].any() or p[:, 0].any() or p[:, -1].any())
-
-
 def solve_wheel(rail: RailPlacement, wheel: WheelPlacement, side: str, y: float, Fz: float, omega_per_speed: float,
                 materials: MaterialPair, mu: float, dx: float, dy: float, *, yaw: float = 0.0, roll: float = 0.0,
                 params: WheelRailParams = WheelRailParams(), progress=None) -> WheelRailResult:
@@ -223,13 +182,13 @@ def solve_wheel(rail: RailPlacement, wheel: WheelPlacement, side: str, y: float,
             raise InputError(f"{name} = {v!r}: must be finite and > 0")
     sign = 1.0 if side == "left" else -1.0
     search = ContactSearch(rail, wheel, y, sign * yaw, sign * roll, step=params.search_step)
-    estimate = _hertz_estimate(search, wheel.radius, materials.E_star, Fz)
-    coarse, rows = _coarse_pass(search, materials, Fz, 2.0 * estimate, params)
-    coarse, rows = _coarse_pass(search, materials, Fz, 1.1 * coarse, params, rows)
+    estimate = hertz_estimate(search, wheel.radius, materials.E_star, Fz)
+    coarse, rows = coarse_pass(search, materials, Fz, 2.0 * estimate, params)
+    coarse, rows = coarse_pass(search, materials, Fz, 1.1 * coarse, params, rows)
     dz_grid, grids = 1.1 * coarse, 0
     for _ in range(6):
-        frames = _centred(search, search.patches(dz_grid, params.combine), rows)
-        patches = [_Patch(search, f, _patch_grid(search, f, dz_grid, dx, dy), materials, params) for f in frames]
+        frames = centred(search, search.patches(dz_grid, params.combine), rows)
+        patches = [PatchState(search, f, patch_grid(search, f, dz_grid, dx, dy), materials, params) for f in frames]
         grids += len(patches)
         if progress:
             progress("wheel-rail: " + "; ".join(
@@ -242,7 +201,7 @@ def solve_wheel(rail: RailPlacement, wheel: WheelPlacement, side: str, y: float,
     else:
         raise ConvergenceError("the patch grids kept growing: the contact left every grid built for it",
                                solver="wheel-rail search", iterations=6)
-    dz, outer, vertical = state
+    dz, outer, normal_solves = state
     wheel_now = search.wheel(dz)
     results = [_patch_result(search, wheel_now, p, omega_per_speed) for p in patches if p.loaded]
     force = np.zeros(3)
@@ -251,154 +210,7 @@ def solve_wheel(rail: RailPlacement, wheel: WheelPlacement, side: str, y: float,
     if sign < 0:
         results = [_mirrored(r) for r in results]
     return WheelRailResult(side, results, (float(force[0]), float(sign * force[1]), float(force[2])), float(dz),
-                           float(search.position(dz).z_centre), outer, vertical, grids)
-
-
-def _hertz_estimate(search: ContactSearch, radius: float, E_star: float, Fz: float) -> float:
-    """The approach (mm) of a Hertz contact with the wheel's radius along x and the gap's curvature across it at the
-    first touch (limited to 1/50 of the wheel's radius: a flat tread), carrying Fz: the search's starting guess."""
-    from rollcontact.solver.analytic import HertzEllipse
-    k = max(search.curvature_estimate(), 1.0 / (50.0 * radius))
-    return HertzEllipse(radius, 1.0 / k, E_star, Fz).approach
-
-
-def _coarse_pass(search, materials, Fz, dz, params, rows=None):
-    """dz (mm) carrying Fz on coarse grids over the patches at `dz` (module docstring, step 2), centred by the row
-    loads `rows` of an earlier pass if given, and the load of their rows (`_row_loads`)."""
-    frames = search.patches(dz, params.combine)
-    if rows is not None:
-        frames = _centred(search, frames, rows)
-    if not frames:
-        raise InputError("the contact search found no interpenetration")
-    patches = []
-    for f in frames:
-        sx, ss = _extent(search, f, dz)
-        h = max(min(2 * sx, 2 * ss) / params.coarse_cells, 1e-6)
-        patches.append(_Patch(search, f, _patch_grid(search, f, dz, h, h), materials, params))
-    found, _ = _vertical(search, patches, [math.cos(p.frame.angle) for p in patches], Fz, 0.5 * dz, params)
-    rows = [_row_loads(search, p) for p in patches if p.loaded]
-    return found, tuple(np.concatenate([r[k] for r in rows]) for k in range(4))
-
-
-def _row_loads(search: ContactSearch, patch) -> tuple:
-    """Per row of a solved patch's grid: its normal load (N), the lateral position y of the rail point below it and
-    the rail's surface angle there, and its load's mean x (side frame; mm, rad)."""
-    frame, grid, p = patch.frame, patch.grid, patch.normal.pressure
-    load = p.sum(axis=1) * grid.cell_area
-    c, s = math.cos(frame.angle), math.sin(frame.angle)
-    y = frame.origin[1] + grid.y * c - patch.rail_t * s
-    x = frame.origin[0] + (p * grid.x[None, :]).sum(axis=1) / np.where(load > 0, p.sum(axis=1), 1.0)
-    keep = load > 0
-    return load[keep], y[keep], np.arctan(search.rail.surface.slope(y[keep])), x[keep]
-
-
-def _centred(search: ContactSearch, frames: list, rows) -> list:
-    """The frames moved to their load centres: each coarse row's load goes to the frame whose lateral extent is
-    nearest to the row's y; a frame's reference becomes the load-weighted mean x, y of its rows and its contact angle
-    the load-weighted mean of the rail's surface angle (the load centre, weighted angle). A frame without load keeps
-    the search's reference."""
-    load, y, angle, x = rows
-    if not frames or load.size == 0:
-        return frames
-    lo = np.array([f.y_lo for f in frames])
-    hi = np.array([f.y_hi for f in frames])
-    distance = np.maximum(lo[None, :] - y[:, None], 0.0) + np.maximum(y[:, None] - hi[None, :], 0.0)
-    owner = np.argmin(distance, axis=1)
-    out = []
-    for k, f in enumerate(frames):
-        w = load[owner == k]
-        if w.sum() <= 0:
-            out.append(f)
-            continue
-        yk = float(np.dot(w, y[owner == k]) / w.sum())
-        xk = float(np.dot(w, x[owner == k]) / w.sum())
-        ak = float(np.dot(w, angle[owner == k]) / w.sum())
-        out.append(PatchFrame(np.array([xk, yk, float(search.rail.surface(yk))]), ak, f.y_lo, f.y_hi))
-    return out
-
-
-def _extent(search: ContactSearch, frame: PatchFrame, dz: float) -> tuple[float, float]:
-    """Estimated half-extents (mm) along x and s of a patch's interpenetration region at dz: along s from its
-    lateral interval, along x from the wheel's radius and the depth (and the spread of the contact locus)."""
-    c = math.cos(frame.angle)
-    half_s = 0.5 * (frame.y_hi - frame.y_lo) / max(c, 0.2) + 2 * search.step
-    depth = search.depth(frame, dz)
-    half_x = math.sqrt(2.0 * search.wheel_placement.radius * max(depth, 0.0) / max(c, 0.2))
-    return 1.2 * half_x + search.locus_spread(frame), 1.2 * half_s
-
-
-def _patch_grid(search: ContactSearch, frame: PatchFrame, dz: float, dx: float, dy: float) -> Grid:
-    """The grid of cells dx x dy over the interpenetration region h < 0 of the patch at dz, plus one cell on every
-    side (the steady solver needs a free cell ahead of and behind the contact)."""
-    half_x, half_s = _extent(search, frame, dz)
-    half_x, half_s = max(half_x, 2 * dx), max(half_s, 2 * dy)
-    wheel = search.wheel(dz)
-    for _ in range(8):
-        grid = Grid.covering(-half_x, half_x, -half_s, half_s, dx, dy)
-        rail_t = rail_distance(search.rail, frame, grid.y)
-        gap, _ = patch_gap(rail_t, wheel, frame, grid.x, grid.y)
-        inside = np.nan_to_num(gap, nan=1.0) < 0
-        if not inside.any():
-            raise InputError(f"patch at y = {frame.origin[1]:.4g} mm: no interpenetration on its plane at dz = "
-                             f"{dz:.3g} mm")
-        grow_x = inside[:, 0].any() or inside[:, -1].any()
-        grow_s = inside[0].any() or inside[-1].any()
-        if not (grow_x or grow_s):
-            break
-        half_x *= 1.5 if grow_x else 1.0
-        half_s *= 1.5 if grow_s else 1.0
-    else:
-        raise InputError(f"patch at y = {frame.origin[1]:.4g} mm: its interpenetration region does not close "
-                         "within 20 times its estimated size (a conformal or flat contact the planar patch cannot "
-                         "hold)")
-    cols, rows = np.flatnonzero(inside.any(axis=0)), np.flatnonzero(inside.any(axis=1))
-    x, s = grid.x, grid.y
-    return Grid.covering(x[cols[0]] - dx, x[cols[-1]] + dx, s[rows[0]] - dy, s[rows[-1]] + dy, dx, dy)
-
-
-def _vertical(search, patches, factors, Fz, dz, params):
-    """dz (mm) with sum_k factors[k] Fn_k(dz) = Fz, and the normal solves it took. Power-law steps
-    dz (Fz / F)^(2/3) (exact for one Hertzian patch) until two points bracket Fz, then the secant on F^(2/3)
-    safeguarded by bisection."""
-    def total(dz):
-        wheel = search.wheel(dz)
-        return sum(c * p.solve_normal(wheel) for p, c in zip(patches, factors))
-
-    solves = 0
-    lo, hi = (0.0, 0.0), None          # (dz, F) below and above Fz
-    F = total(dz)
-    solves += 1
-    while F <= 0.0:
-        lo = (dz, F)
-        dz *= 2.0
-        F, solves = total(dz), solves + 1
-        if solves > 40:
-            raise ConvergenceError("no load found while lowering the wheel", solver="wheel-rail vertical",
-                                   iterations=solves)
-    last = None
-    for _ in range(80):
-        if abs(F - Fz) <= params.force_tol * Fz:
-            for p in patches:
-                p.dz_last = dz
-            return dz, solves
-        if F < Fz:
-            lo = (dz, F)
-        else:
-            hi = (dz, F)
-        psi, target = F ** (2.0 / 3.0), Fz ** (2.0 / 3.0)
-        if last is not None and last[1] > 0 and last[0] != dz:
-            psi0 = last[1] ** (2.0 / 3.0)
-            slope = (psi - psi0) / (dz - last[0])
-            new = dz + (target - psi) / slope if slope > 0 else math.nan
-        else:
-            new = dz * (Fz / F) ** (2.0 / 3.0)
-        if hi is not None and not (lo[0] < new < hi[0]):
-            new = 0.5 * (lo[0] + hi[0])
-        last = (dz, F)
-        dz = new
-        F, solves = total(dz), solves + 1
-    raise ConvergenceError("the vertical force balance did not converge", solver="wheel-rail vertical",
-                           iterations=solves, residual=abs(F - Fz) / Fz, tol=params.force_tol)
+                           float(search.position(dz).z_centre), outer, normal_solves, grids)
 
 
 def _balance(search, patches, Fz, dz, mu, omega_per_speed, params):
@@ -406,14 +218,14 @@ def _balance(search, patches, Fz, dz, mu, omega_per_speed, params):
     (dz, outer iterations, normal solves), or None when the contact outgrew the patch grids."""
     ratio = np.zeros(len(patches))
     solver = PATCH_SOLVERS[params.fidelity]
-    vertical = 0
+    normal_solves = 0
     for outer in range(1, params.max_outer + 1):
         factors = [math.cos(p.frame.angle) + r * math.sin(p.frame.angle) for p, r in zip(patches, ratio)]
         if min(factors) <= 0:
             raise ConvergenceError("a patch's tangential force turns its vertical force downwards",
                                    solver="wheel-rail vertical", iterations=outer)
-        dz, solves = _vertical(search, patches, factors, Fz, dz, params)
-        vertical += solves
+        dz, solves = vertical(search, patches, factors, Fz, dz, params)
+        normal_solves += solves
         if any(p.loaded and p.on_border() for p in patches):
             return None
         position = search.position(dz)
@@ -432,13 +244,13 @@ def _balance(search, patches, Fz, dz, mu, omega_per_speed, params):
             ratio[k] = Fs / Fn
             total += Fn * math.cos(p.frame.angle) + Fs * math.sin(p.frame.angle)
         if abs(total - Fz) <= params.force_tol * Fz:
-            return dz, outer, vertical
+            return dz, outer, normal_solves
     raise ConvergenceError("the normal / tangential alternation of the vertical balance did not converge",
                            solver="wheel-rail vertical", iterations=params.max_outer, residual=abs(total - Fz) / Fz,
                            tol=params.force_tol)
 
 
-def _patch_result(search: ContactSearch, wheel, patch: _Patch, omega_per_speed) -> PatchResult:
+def _patch_result(search: ContactSearch, wheel, patch: PatchState, omega_per_speed) -> PatchResult:
     """A solved patch in the side frame (mirrored afterwards for a right wheel)."""
     frame, grid, normal, tang = patch.frame, patch.grid, patch.normal, patch.tangential
     origin = frame.origin
