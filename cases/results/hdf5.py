@@ -100,6 +100,10 @@ def _write_patches(group, patches):
             _dataset(fields, name, values, chunks=values.shape, compression="gzip", compression_opts=GZIP_LEVEL)
         for key, value in patch.values.items():
             g.attrs[key] = _attr_value(key, value)
+        if patch.history:
+            history = g.create_group("history")
+            for name, values in patch.history.items():
+                _dataset(history, name, np.asarray(values))
 
 
 def _read_patches(h5) -> list:
@@ -109,7 +113,8 @@ def _read_patches(h5) -> list:
     for k in sorted(h5["patches"], key=int):
         g = h5["patches"][k]
         fields = {n: v[0] for n, v in ((n, g["fields"][n][()]) for n in g["fields"] if n != "step") if len(v)}
-        out.append(PatchData(g["grid/x"][()], g["grid/y"][()], fields, summary_from_attrs(g.attrs)))
+        history = {n: v[()] for n, v in g["history"].items()} if "history" in g else {}
+        out.append(PatchData(g["grid/x"][()], g["grid/y"][()], fields, summary_from_attrs(g.attrs), history))
     return out
 
 

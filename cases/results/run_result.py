@@ -91,12 +91,19 @@ SUMMARY_UNITS.update(WHEELRAIL_SUMMARY_UNITS)
 #: /patches/<k>/ of a [wheelrail] run: the layout of the file's root for one patch (grid/x, grid/y in the patch's
 #: tangent plane: x along the track, y along s; fields/<name> of shape (1, ny, nx) with FIELD_UNITS, the wheel taking
 #: the sphere's part and the rail the substrate's, and gap, the undeformed distance h(x, s) of wheel and rail along n;
-#: fields/step = [0]); its attributes are the patch's values (PATCH_UNITS).
+#: fields/step = [0]; a transient run: the last step on the world-fixed grid, its history/<name> per step: step, W_x
+#: the contact centre, Fn, F_x, F_y the force on the rail, M_z on the wheel, stick_area, iterations, cpu_time); its
+#: attributes are the patch's values (PATCH_UNITS).
 PATCH_FIELD_UNITS = {"gap": "mm"}
 PATCH_UNITS = {"y_rail": "mm", "y_wheel": "mm", "x_track": "mm", "contact_angle": "rad", "rolling_radius": "mm",
                "Fn": "N", "Fx": "N", "Fy": "N", "Mz": "N mm", "xi": "-", "eta": "-", "phi": "1/mm", "pmax": "MPa",
                "length": "mm", "width": "mm", "penetration": "mm", "angle_spread": "rad", "dx": "mm", "dy": "mm",
-               "normal_iterations": "-", "sweeps": "-", "contact_elements": "-", "stick_elements": "-"}
+               "normal_iterations": "-", "sweeps": "-", "contact_elements": "-", "stick_elements": "-",
+               "Fx_steady": "N", "Fy_steady": "N", "Mz_steady": "N mm", "distance": "mm", "step": "mm", "steps": "-"}
+#: A transient [wheelrail] run ([rolling] mode = "transient") reports the patches' forces after rolling; the steady
+#: state's are PATCH_UNITS' Fx_steady, Fy_steady, Mz_steady and the summary's patch_Fx_steady, ... below.
+SUMMARY_UNITS.update({"patch_Fx_steady": "N", "patch_Fy_steady": "N", "patch_Mz_steady": "N mm", "mode": "-",
+                      "distance": "mm", "step": "mm"})
 
 #: Units of every stored dataset (its 'units' attribute in HDF5).
 UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FIELD_UNITS, **PATCH_FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm",
@@ -106,12 +113,14 @@ UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FIELD_UNITS, **PATCH_FIELD_UN
 @dataclass
 class PatchData:
     """One contact patch of a [wheelrail] run: its grid `x` (nx,), `y` (ny,) (mm, in its tangent plane), `fields`
-    {name: (ny, nx)} (FIELD_UNITS, PATCH_FIELD_UNITS) and `values` {name: value} (PATCH_UNITS)."""
+    {name: (ny, nx)} (FIELD_UNITS, PATCH_FIELD_UNITS), `values` {name: value} (PATCH_UNITS) and, rolled transiently,
+    its `history` {name: one value per step} (HISTORY_UNITS, CREEP_HISTORY_UNITS)."""
 
     x: np.ndarray
     y: np.ndarray
     fields: dict = field(default_factory=dict)
     values: dict = field(default_factory=dict)
+    history: dict = field(default_factory=dict)
 
 
 @dataclass

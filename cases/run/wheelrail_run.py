@@ -9,7 +9,10 @@ rail in the substrate's: p, u_z; tau_x, tau_y the traction the wheel exerts on t
 displacement relative to the wheel; slip_x, slip_y the rail's slip relative to the wheel over a rolling step of one
 element (dx, mm); region 0 / 1 / 2; and gap, the undeformed distance h(x, s) along n. The root's /grid and /fields
 are empty; /history has the one step (Fn: the patches' normal forces summed; F_x, F_y: F_track_x, F_track_y).
-output.fields = "none" stores the patches' values without their fields. Units: mm, N, MPa, rad, s.
+output.fields = "none" stores the patches' values without their fields. With [rolling] mode = "transient" each
+patch is then rolled from its initial state over the distance (solver.wheelrail.transient): its fields are the last
+step's on the world-fixed grid, its forces (patch_Fx, patch_Fy, patch_Mz and the totals) the last step's, the steady
+state's beside them (patch_Fx_steady, ...), and /patches/<k>/history holds every step. Units: mm, N, MPa, rad, s.
 """
 from __future__ import annotations
 
@@ -40,11 +43,16 @@ def run_wheelrail(scene: Scene, *, progress=None) -> RunResult:
     dx, dy = scene.spacing
     sv = scene.solver
     params = WheelRailParams(tol=sv.tol, max_iter=sv.max_iter, threads=sv.threads, fidelity=sv.fidelity)
+    transient = None
+    if scene.rolling.mode == "transient":
+        from rollcontact.solver.wheelrail.transient import TransientSpec
+        ro = scene.rolling
+        transient = TransientSpec(ro.distance, ro.step, ro.initial or "rest")
     try:
         rail, wheel = wheelrail_scene.geometry(wr)
         solved = solve_wheel(rail, wheel, wr.side, wr.y, wr.Fz, wheelrail_scene.omega_per_speed(wr),
                              scene.material_pair, scene.load.mu, dx, dy, yaw=wr.yaw, roll=wr.roll, params=params,
-                             progress=progress)
+                             transient=transient, progress=progress)
     except RollcontactError as exc:
         return RunResult(scene_toml=scene.to_toml(), status="failed", error=f"{type(exc).__name__}: {exc}",
                          x=np.zeros(0), y=np.zeros(0),
@@ -68,9 +76,17 @@ def run_wheelrail(scene: Scene, *, progress=None) -> RunResult:
 def _summary(scene: Scene, solved, wall: float, cpu: float) -> dict:
     wr = scene.wheelrail
     ps = solved.patches
-    out = {"state": "steady", "side": wr.side, "n_patches": len(ps)}
+    out = {"state": "steady", "side": wr.side, "n_patches": len(ps),
+           "mode": "transient" if ps and ps[0].transient is not None else "steady"}
     for name, attr in PATCH_ARRAYS.items():
         out[name] = np.array([getattr(p, attr) for p in ps], dtype=float)
+    if out["mode"] == "transient":
+        for name, k in (("Fx", 0), ("Fy", 1)):
+            out[f"patch_{name}_steady"] = out[f"patch_{name}"]
+            out[f"patch_{name}"] = np.array([p.transient.force[k] for p in ps])
+        out["patch_Mz_steady"], out["patch_Mz"] = out["patch_Mz"], np.array([p.transient.moment for p in ps])
+        out.update(state="transient", distance=max(p.transient.distance for p in ps),
+                   step=ps[0].transient.step)
     for k, name in enumerate(("patch_xi", "patch_eta", "patch_phi")):
         out[name] = np.array([p.creepages[k] for p in ps], dtype=float)
     out.update(F_track_x=solved.force_track[0], F_track_y=solved.force_track[1], F_track_z=solved.force_track[2],
@@ -88,6 +104,8 @@ def _summary(scene: Scene, solved, wall: float, cpu: float) -> dict:
 
 def _patch_data(p, with_fields: bool) -> PatchData:
     """A solved patch (solver.wheelrail.PatchResult) as stored: the run-file fields (module docstring) and values."""
+    if p.transient is not None:
+        return _transient_data(p, with_fields)
     g = p.grid
     values = dict(y_rail=p.y_rail, y_wheel=p.y_wheel, x_track=p.x_track, contact_angle=p.contact_angle,
                   rolling_radius=p.rolling_radius, Fn=p.Fn, Fx=p.Fx, Fy=p.Fs, Mz=p.Mz, xi=p.creepages[0],
@@ -101,6 +119,30 @@ def _patch_data(p, with_fields: bool) -> PatchData:
                   "slip_x": -p.slip[0] * g.dx, "slip_y": -p.slip[1] * g.dx, "u_x": -p.u12[0], "u_y": -p.u12[1],
                   "region": region, "gap": p.gap}
     return PatchData(g.x, g.y, fields, values)
+
+
+def _transient_data(p, with_fields: bool) -> PatchData:
+    """A patch rolled transiently: the last step's fields on the world grid, the forces after rolling beside the
+    steady ones, the history per step (run-file meaning: F_x, F_y on the rail; M_z on the wheel)."""
+    t = p.transient
+    g, steady = t.grid, _patch_data(_steady_only(p), False).values
+    values = dict(steady, Fx=t.force[0], Fy=t.force[1], Mz=t.moment, Fx_steady=p.Fx, Fy_steady=p.Fs, Mz_steady=p.Mz,
+                  distance=t.distance, step=t.step, steps=int(t.history["step"][-1]), dx=g.dx, dy=g.dy,
+                  contact_elements=int((t.region > 0).sum()), stick_elements=int((t.region == 1).sum()))
+    h = t.history
+    history = {"step": h["step"].astype(np.int64), "W_x": h["centre"], "Fn": h["Fn"], "F_x": -h["Fx"],
+               "F_y": -h["Fs"], "M_z": h["Mz"], "stick_area": h["stick_area"],
+               "iterations": h["iterations"].astype(np.int64), "cpu_time": h["cpu_time"]}
+    fields = {}
+    if with_fields:
+        fields = {"p": t.pressure, "u_z": t.u_z, "tau_x": t.traction[0], "tau_y": t.traction[1], "slip_x": t.slip[0],
+                  "slip_y": t.slip[1], "u_x": t.u[0], "u_y": t.u[1], "region": t.region.astype(np.int8)}
+    return PatchData(g.x, g.y, fields, values, history)
+
+
+def _steady_only(p):
+    from dataclasses import replace
+    return replace(p, transient=None)
 
 
 def format_wheelrail(result: RunResult) -> str:
@@ -123,6 +165,11 @@ def format_wheelrail(result: RunResult) -> str:
                      f"{a['patch_Mz']:.6g} N mm; xi {a['patch_xi']:.4g}, eta {a['patch_eta']:.4g}, phi "
                      f"{a['patch_phi']:.4g} 1/mm; pmax {a['patch_pmax']:.5g} MPa, {a['patch_length']:.3g} x "
                      f"{a['patch_width']:.3g} mm")
+    if s.get("mode") == "transient":
+        lines.append(f"forces after rolling {s['distance']:.4g} mm in steps of {s['step']:.4g} mm from the "
+                     f"{result.scene.rolling.initial or 'rest'} state; the steady state's: Fx "
+                     + ", ".join(f"{v:.6g}" for v in np.atleast_1d(s["patch_Fx_steady"])) + " N, Fy "
+                     + ", ".join(f"{v:.6g}" for v in np.atleast_1d(s["patch_Fy_steady"])) + " N")
     lines.append(f"total force on the wheel (track frame: x forward, y left, z up): F_track = ({s['F_track_x']:.6g}, "
                  f"{s['F_track_y']:.6g}, {s['F_track_z']:.6g}) N")
     if result.path is not None:

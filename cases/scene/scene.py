@@ -138,17 +138,17 @@ class Scene(SceneLimits):
 
     def to_dict(self, include_none: bool = False) -> dict:
         """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]; a
-        [wheelrail] scene has neither, no [geometry], and only load.mu and grid.dx, dy."""
+        [wheelrail] scene has no [motion] or [geometry] and only load.mu and grid.dx, dy."""
         out = {}
-        skip = ("geometry", "motion", "rolling") if self.wheelrail_on else \
+        skip = ("geometry", "motion") + (() if self.rolling_on else ("rolling",)) if self.wheelrail_on else \
             ("wheelrail", "motion" if self.rolling_on else "rolling")
         for sec in SECTIONS:
             if sec in skip:
                 continue
             obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
-            if self.wheelrail_on and sec in ("load", "grid"):
-                vals = {k: v for k, v in vals.items() if k in ("mu", "dx", "dy")}
+            if self.wheelrail_on and sec in ("load", "grid", "rolling"):
+                vals = {k: v for k, v in vals.items() if k in ("mu", "dx", "dy", "mode", "distance", "step", "initial")}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
         return out
 

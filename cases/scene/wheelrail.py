@@ -1,8 +1,10 @@
 """The [wheelrail] section of a scene: a wheel on its rail (solver.wheelrail; docs/wheelrail.md). Its checks, the
 geometry it describes, and the estimates a scene derives from it. Units: mm, N, MPa, rad, s.
 
-A [wheelrail] scene has no [geometry], [motion] or [rolling] and no tangential or normal load in [load] (only mu):
-the contact follows from the profiles, the wheelset's position and the load Fz; the creepages from its motion. It
+A [wheelrail] scene has no [geometry] or [motion] and no tangential or normal load in [load] (only mu): the contact
+follows from the profiles, the wheelset's position and the load Fz; the creepages from its motion. Its [rolling]
+takes only mode ("steady", the default, or "transient": each patch then rolls from an initial state, solver.wheelrail.
+transient) and a transient's distance, step and initial. It
 needs the materials of both bodies ([materials] E1, nu1: the wheel; E2, nu2: the rail; their defaults are the seed
 paper's rubber substrate) and the BEM model with a patch solver of solver.wheelrail.PATCH_SOLVERS ([solver]
 fidelity). Normal and tangential problems are solved uncoupled: dissimilar materials (Kalker's K != 0) need
@@ -29,8 +31,9 @@ from rollcontact.solver.wheelrail.patch import omega_per_speed as _omega_per_spe
 REQUIRED = ("wheel_profile", "rail_profile", "wheel_radius", "rail_inclination", "side", "flange_back", "Fz")
 #: sections a [wheelrail] scene may not have, and why
 EXCLUDED = {"geometry": "the contact's geometry follows from the wheel and rail profiles",
-            "motion": "the wheelset rolls steadily; its motion is [wheelrail] speed, xi or omega",
-            "rolling": "the creepages follow from the wheelset's motion ([wheelrail] xi or omega, yaw)"}
+            "motion": "the wheelset rolls steadily; its motion is [wheelrail] speed, xi or omega"}
+#: the [rolling] keys a [wheelrail] scene takes
+ROLLING_KEYS = ("mode", "distance", "step", "initial")
 #: the only [load] key a [wheelrail] scene takes
 LOAD_KEYS = ("mu",)
 
@@ -47,6 +50,19 @@ def check_sections(data: dict):
         hint = " (the vertical load is [wheelrail] Fz)" if "Fn" in extra else ""
         raise SceneError(f"[load] {', '.join(extra)} with [wheelrail]: a wheel-rail scene takes only load.mu from "
                          f"[load]{hint}; remove {', '.join('load.' + k for k in extra)}")
+    rolling = data.get("rolling", {})
+    extra = sorted(set(rolling) - set(ROLLING_KEYS))
+    if extra:
+        raise SceneError(f"[rolling] {', '.join(extra)} with [wheelrail]: the creepages follow from the wheelset's "
+                         "motion ([wheelrail] xi or omega, yaw); [rolling] takes only mode = \"transient\" with "
+                         "distance, step and initial")
+    if rolling.get("mode", "steady") == "none":
+        raise SceneError("[rolling] mode = 'none' with [wheelrail]: a wheel-rail scene rolls; allowed values are "
+                         "'steady' (the default) and 'transient'")
+    for key in ("distance", "step", "initial"):
+        if key in rolling and rolling.get("mode") != "transient":
+            raise SceneError(f"[rolling] {key} with mode = {rolling.get('mode', 'steady')!r}: {key} applies to "
+                             "mode = 'transient' only")
     if "margin" in data.get("grid", {}):
         raise SceneError("[grid] margin with [wheelrail]: the patch grids cover each patch's interpenetration region "
                          "(which holds its contact) and one cell more; remove grid.margin")

@@ -21,7 +21,7 @@ class PatchState:
 
     def __init__(self, search: ContactSearch, frame: PatchFrame, grid: Grid, materials, params):
         """params: solver.wheelrail.solve.WheelRailParams (tol, max_iter, threads, planner)."""
-        self.frame, self.grid, self.params = frame, grid, params
+        self.frame, self.grid, self.params, self.rail = frame, grid, params, search.rail
         self.rail_t = rail_distance(search.rail, frame, grid.y)
         if np.any(np.isnan(self.rail_t)):
             raise InputError(search._uncovered(float(frame.point(0.0, grid.y[0])[1]), 0.0))

@@ -50,9 +50,10 @@ class WheelRailParams:
     budget; force_tol: the vertical force balance, relative to Fz; combine: interpenetration regions closer than this
     (mm) form one patch; coarse_cells: cells across a patch in the coarse pass; max_outer: normal / tangential
     alternations; threads: FFTW threads; fidelity: the tangential solver of each patch (PATCH_SOLVERS); planner: the
-    FFTW planner of the patch operators. FFTW_ESTIMATE: every position has patch grids of new shapes, and measuring
-    their plans cost 0.4-1.2 s per position (Manchester profiles, 0.2 mm grid, the wisdom cache empty) against
-    runs of 0.05-0.3 s; estimated plans run those positions 5-30 % slower once measured plans are cached."""
+    FFTW planner of the patch operators (and of a transient's world grids). FFTW_ESTIMATE: every position has patch
+    grids of new shapes, and measuring their plans cost 0.4-1.2 s per position (Manchester profiles, 0.2 mm grid,
+    the wisdom cache empty) against runs of 0.05-0.3 s; estimated plans run those positions 5-30 % slower once
+    measured plans are cached."""
     tol: float = 1e-8
     max_iter: int = 500
     force_tol: float = 1e-6
@@ -121,7 +122,9 @@ class PatchResult:
     angle_spread: how much the rail's surface angle varies across the contact (rad, its largest less its smallest
     over the contact's lateral extent): the planar patch takes one angle for all (docs/wheelrail.md, "Where the
     planar patch becomes inaccurate"); normal_iterations, sweeps: of the last solves; frame: the patch's reference
-    point and angle in the side frame (solver.wheelrail.search.PatchFrame; a right wheel's is the mirror image's)."""
+    point and angle in the side frame (solver.wheelrail.search.PatchFrame; a right wheel's is the mirror image's);
+    transient: the patch rolled from an initial state (solver.wheelrail.transient.PatchTransient) when asked, else
+    None; the forces above are then still the steady state's."""
     x_track: float
     y_rail: float
     y_wheel: float
@@ -149,6 +152,7 @@ class PatchResult:
     normal_iterations: int
     sweeps: int
     frame: PatchFrame
+    transient: object = None
 
 
 @dataclass
@@ -169,12 +173,14 @@ class WheelRailResult:
 
 def solve_wheel(rail: RailPlacement, wheel: WheelPlacement, side: str, y: float, Fz: float, omega_per_speed: float,
                 materials: MaterialPair, mu: float, dx: float, dy: float, *, yaw: float = 0.0, roll: float = 0.0,
-                params: WheelRailParams = WheelRailParams(), progress=None) -> WheelRailResult:
+                params: WheelRailParams = WheelRailParams(), transient=None, progress=None) -> WheelRailResult:
     """Solve one wheel (module docstring). side: 'left' or 'right'; y: the wheelset's lateral position towards the
     field side of this rail (mm); yaw, roll: the wheelset's angles in the track frame (rad); Fz: the vertical load
     on this wheel (N); omega_per_speed: the wheelset's rotation over its forward speed (rad/mm,
     solver.wheelrail.patch.omega_per_speed); mu: friction coefficient; dx, dy: the patch grids' cells along x and s
-    (mm). progress: callable(message) or None."""
+    (mm). transient: a solver.wheelrail.transient.TransientSpec to roll each patch from its initial state after the
+    steady solution (its forces then in PatchResult.transient and in the total), or None. progress: callable(message)
+    or None."""
     if side not in SIDES:
         raise InputError(f"side = {side!r}: allowed values are {list(SIDES)}")
     for name, v in (("Fz", Fz), ("mu", mu), ("dx", dx), ("dy", dy), ("omega_per_speed", omega_per_speed)):
@@ -203,10 +209,19 @@ def solve_wheel(rail: RailPlacement, wheel: WheelPlacement, side: str, y: float,
                                solver="wheel-rail search", iterations=6)
     dz, outer, normal_solves = state
     wheel_now = search.wheel(dz)
-    results = [_patch_result(search, wheel_now, p, omega_per_speed) for p in patches if p.loaded]
+    loaded = [p for p in patches if p.loaded]
+    results = [_patch_result(search, wheel_now, p, omega_per_speed) for p in loaded]
+    if transient is not None:
+        from rollcontact.solver.wheelrail.transient import roll_patch
+        for p, r in zip(loaded, results):
+            if progress:
+                progress(f"wheel-rail: rolling the patch at y = {p.frame.origin[1]:.2f} mm from the {transient.initial} "
+                         "state")
+            r.transient = roll_patch(p, wheel_now, mu, transient, params)
     force = np.zeros(3)
-    for p, r in zip([p for p in patches if p.loaded], results):
-        force += r.Fx * p.frame.e_x + r.Fs * p.frame.e_s + r.Fn * p.frame.e_n
+    for p, r in zip(loaded, results):
+        fx, fs = r.transient.force if r.transient is not None else (r.Fx, r.Fs)
+        force += fx * p.frame.e_x + fs * p.frame.e_s + r.Fn * p.frame.e_n
     if sign < 0:
         results = [_mirrored(r) for r in results]
     return WheelRailResult(side, results, (float(force[0]), float(sign * force[1]), float(force[2])), float(dz),
@@ -289,4 +304,10 @@ def _mirrored(r: PatchResult) -> PatchResult:
         traction=vec(r.traction), slip=vec(r.slip), u12=vec(r.u12), contact=flip(r.contact), stick=flip(r.stick),
         gap=flip(r.gap), creepages=(xi, -eta, -phi), Fn=r.Fn, Fx=r.Fx, Fs=-r.Fs, Mz=-r.Mz, pmax=r.pmax,
         length=r.length, width=r.width, penetration=r.penetration, angle_spread=r.angle_spread,
-        normal_iterations=r.normal_iterations, sweeps=r.sweeps, frame=r.frame)
+        normal_iterations=r.normal_iterations, sweeps=r.sweeps, frame=r.frame,
+        transient=None if r.transient is None else _mirrored_transient(r.transient))
+
+
+def _mirrored_transient(t):
+    from rollcontact.solver.wheelrail.transient import mirrored
+    return mirrored(t)

@@ -166,3 +166,25 @@ def test_manchester_benchmark_case_agrees_with_the_reference_program(mbench, mbe
     assert mine["z_ws"] == pytest.approx(ref["z_ws"], abs=0.004)
     for name in ("F_track_x", "F_track_y", "F_track_z"):      # Fn's 0.2 % and the plane's 0.002 rad, turned
         assert mine[name] == pytest.approx(ref[name], abs=0.005 * (mu_fn + abs(ref[name])))
+
+
+def test_a_patch_rolled_from_rest_tends_to_its_steady_state(tmp_path):
+    """[rolling] mode = "transient": the crowns' patch rolled from rest over four contact lengths (the default) at
+    xi = -0.001 (partial slip) ends within 0.5 % of the steady forces (the transient's memory falls about 5x per
+    contact length with step = dx, docs/creep_rolling.md); its history is stored per step, with units."""
+    scene = crown_scene(tmp_path, dx=0.4, dy=0.2).with_overrides(
+        {"wheelrail.xi": -0.001, "rolling.mode": "transient"})
+    result = rollcontact.run(scene, tmp_path / "rolled.h5")
+    s, patch = result.summary, result.patches[0]
+    assert s["mode"] == "transient" and s["distance"] >= 4 * s["patch_length"][0]
+    force = math.hypot(s["patch_Fx_steady"][0], s["patch_Fy_steady"][0])
+    assert force > 0.1 * 0.3 * s["patch_Fn"][0]
+    assert s["patch_Fx"][0] == pytest.approx(s["patch_Fx_steady"][0], abs=5e-3 * force)
+    assert s["F_track_x"] == pytest.approx(s["patch_Fx"][0], rel=1e-12)
+    h = patch.history
+    assert h["step"][0] == 0 and h["F_x"][0] == pytest.approx(0.0, abs=1e-9)        # at rest: no tangential force
+    assert h["F_x"][-1] == pytest.approx(-s["patch_Fx"][0], rel=1e-12)             # on the rail
+    assert patch.fields["p"].shape == (patch.y.size, patch.x.size) and patch.x.size > 3 * s["patch_length"][0] / 0.4
+    assert datasets_without_units(result.path) == []
+    back = rollcontact.read_run(result.path)
+    np.testing.assert_array_equal(back.patches[0].history["F_x"], h["F_x"])

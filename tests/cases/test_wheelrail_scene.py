@@ -151,3 +151,13 @@ def test_a_sweep_over_y_draws_the_contact_point_diagram_and_a_run_its_patches(tm
     run = rollcontact.read_run(next((tmp_path / "sweep").glob("y=5.5*.h5")))
     paths = plot_wheelrail_run(run, tmp_path / "plots", "y55")
     assert all(p.stat().st_size > 10000 for p in paths)
+
+
+def test_rolling_takes_only_the_transient_keys_with_wheelrail(files):
+    with pytest.raises(SceneError, match=r"\[rolling\] xi with \[wheelrail\]: the creepages follow"):
+        Scene.from_toml_text(scene_text(files, "[rolling]\nmode = \"steady\"\nxi = 0.001\n"))
+    with pytest.raises(SceneError, match="distance with mode = 'steady': distance applies to mode = 'transient'"):
+        Scene.from_toml_text(scene_text(files, "[rolling]\nmode = \"steady\"\ndistance = 10.0\n"))
+    scene = Scene.from_toml_text(scene_text(files, "[rolling]\nmode = \"transient\"\ndistance = 10.0\n"))
+    again = Scene.from_toml_text(scene.to_toml())
+    assert again.rolling.mode == "transient" and again.rolling.distance == 10.0 and again.rolling.phi == 0.0
