@@ -188,3 +188,20 @@ def test_a_patch_rolled_from_rest_tends_to_its_steady_state(tmp_path):
     assert datasets_without_units(result.path) == []
     back = rollcontact.read_run(result.path)
     np.testing.assert_array_equal(back.patches[0].history["F_x"], h["F_x"])
+
+
+def test_the_right_wheel_is_the_mirror_image_of_the_left(mbench):
+    """The left wheel at y (towards its field side), yaw psi, roll phi is the mirror image y -> -y of the right wheel at
+    y, -psi, -phi: the same normal and longitudinal forces and positions, opposite lateral forces, spin, contact angles
+    and moments."""
+    common = {"wheelrail.y": 4.0, "wheelrail.omega": 4.34}
+    right = rollcontact.run(mbench.with_overrides({**common, "wheelrail.yaw": 0.008, "wheelrail.roll": 2e-4})).summary
+    left = rollcontact.run(mbench.with_overrides({**common, "wheelrail.side": "left", "wheelrail.yaw": -0.008,
+                                                  "wheelrail.roll": -2e-4})).summary
+    for name in ("patch_y_rail", "patch_y_wheel", "patch_x", "patch_Fn", "patch_Fx", "patch_xi", "patch_pmax"):
+        np.testing.assert_allclose(left[name], right[name], rtol=1e-9, atol=1e-9, err_msg=name)
+    for name in ("patch_contact_angle", "patch_Fy", "patch_Mz", "patch_eta", "patch_phi"):
+        np.testing.assert_allclose(left[name], -right[name], rtol=1e-9, atol=1e-9, err_msg=name)
+    assert (left["F_track_x"], left["F_track_z"]) == pytest.approx((right["F_track_x"], right["F_track_z"]), rel=1e-9)
+    assert left["F_track_y"] == pytest.approx(-right["F_track_y"], rel=1e-9)
+    assert abs(right["patch_eta"][0]) > 1e-3                      # the yaw gives a lateral creepage

@@ -134,3 +134,20 @@ def test_omega_per_speed_gives_the_nominal_creepage():
     for xi in (-0.01, 0.0, 0.003):
         k = omega_per_speed(460.0, xi) * 460.0
         assert 2 * (1 - k) / (1 + k) == pytest.approx(xi, abs=1e-14)
+
+
+def test_inclining_the_rail_equals_a_profile_drawn_inclined():
+    """rail_inclination = 0.025 on an upright crown places the same surface as the crown drawn turned by 0.025 rad
+    with rail_inclination = 0 (the gauge point and the top found on the turned profile either way)."""
+    y = np.linspace(-36.0, 30.0, 661)
+    z = np.where(y < -34.0, -24.0 ** 2 / 300.0 - 20.0 * (-34.0 - y), -(y + 10.0) ** 2 / 300.0)
+    upright = place_rail(Profile(y, z), 0.025, 1435.0, 14.0)
+    drawn = Profile(y, z).turned(0.025)
+    inclined = place_rail(Profile(drawn.y, drawn.z), 0.0, 1435.0, 14.0)
+    probe = np.linspace(max(upright.surface.lo, inclined.surface.lo) + 1, min(upright.surface.hi, inclined.surface.hi) - 1, 50)
+    np.testing.assert_allclose(upright.surface(probe), inclined.surface(probe), atol=1e-9)
+    # the map to the profile's own coordinates inverts the placement (on the crown, away from the corner at y = -34,
+    # where the spline through the turned points and the turned spline part by 0.01 mm)
+    crown_part = probe[probe > upright.shift_y - 30.0]
+    yp, zp = upright.to_profile(crown_part, upright.surface(crown_part))
+    np.testing.assert_allclose(zp, -(yp + 10.0) ** 2 / 300.0, atol=1e-6)
