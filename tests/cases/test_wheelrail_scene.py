@@ -64,7 +64,7 @@ def test_a_changed_profile_file_is_refused_when_its_checksum_is_given(files):
 @pytest.mark.parametrize("extra, message", [
     ("[geometry]\nR = 40.0\n", r"\[wheelrail\] and \[geometry\] exclude each other"),
     ("[motion]\nw = 0.2\n", r"\[wheelrail\] and \[motion\] exclude each other"),
-    ("[rolling]\nmode = \"steady\"\n", r"\[wheelrail\] and \[rolling\] exclude each other"),
+    ("[rolling]\nmode = \"steady\"\nphi = 0.001\n", r"\[rolling\] phi with \[wheelrail\]"),
     ("[grid]\nmargin = 1.0\n", r"\[grid\] margin with \[wheelrail\]"),
     ("[solver]\nfidelity = \"mdr\"\n", r"\[solver\] fidelity = 'mdr' with \[wheelrail\]"),
 ])
