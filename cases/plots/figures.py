@@ -64,9 +64,21 @@ def _creep_result(run):
     return data if is_creep_run(data) else None
 
 
+def _wheelrail_result(run):
+    """The result of a [wheelrail] run (cases.plots.wheelrail_figures, recognised from its summary), else None."""
+    from rollcontact.cases.results.hdf5 import read_run_file, stored_summary
+    if isinstance(run, RunResult):
+        return run if "n_patches" in run.summary else None
+    target = Path(run)
+    stored = stored_summary(target) if target.is_file() else None
+    if stored is None or "n_patches" not in stored["summary"]:
+        return None
+    return read_run_file(target, PlotError, str(target))
+
+
 def plot_target(target, step=None, output=None, overwrite=False) -> Figures:
     """The figures of one run (a run file or a RunResult) or of a sweep folder (cases.plots.run_figures, sweep_figures,
-    creep_figures) into `output` (default: `_default_dir`). PlotError (InputError) for a missing file, a file that is
+    creep_figures, wheelrail_figures) into `output` (default: `_default_dir`). PlotError (InputError) for a missing file, a file that is
     not a run file, a step that was not stored, a `step` with a folder."""
     from rollcontact.cases.plots.run_figures import plot_run
     from rollcontact.cases.plots.sweep_figures import plot_folder
@@ -81,8 +93,13 @@ def plot_target(target, step=None, output=None, overwrite=False) -> Figures:
                 raise PlotError(f"{arg('step')} applies to a run file, not to a sweep folder")
             figures.paths = plot_folder(path, out_dir, figures.notes, out=figures.lines.append, overwrite=overwrite)
             return figures
-        creep = _creep_result(target)
-        if creep is not None:
+        wheelrail = _wheelrail_result(target)
+        creep = _creep_result(target) if wheelrail is None else None
+        if wheelrail is not None:
+            from rollcontact.cases.plots.wheelrail_figures import plot_wheelrail_run
+            stem = Path(path).stem if path is not None else wheelrail.scene.name
+            figures.paths = plot_wheelrail_run(wheelrail, out_dir, stem, overwrite=overwrite, notes=figures.notes)
+        elif creep is not None:
             from rollcontact.cases.plots.creep_figures import plot_creep_run
             stem = Path(path).stem if path is not None else creep.scene.name
             figures.paths = plot_creep_run(creep, out_dir, stem, overwrite=overwrite)
