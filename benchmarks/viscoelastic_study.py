@@ -262,7 +262,8 @@ dx = {a / n}
 
 
 def cyclic_sweep(overrides, out, jobs, grid):
-    scene = default_scene().with_overrides(grid + overrides + ['output.fields="none"', f"motion.W={0.23 * A_R}"])
+    scene = default_scene().with_overrides(grid + overrides + ['output.fields="none"', f"motion.W={0.23 * A_R}"],
+                                           replaces=("motion.W",))
     report = rollcontact.sweep(scene, {"motion.angle": [0, 90], "load.ft": [FT_SD, FT_RATCHET]}, out, jobs=jobs)
     rows = []
     for r in report.rows:

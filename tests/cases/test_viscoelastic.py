@@ -64,7 +64,7 @@ def assert_runs_agree(a, b, rel=1e-6):
 def test_oscillating_rolling_at_the_speed_limits_is_the_relaxed_and_the_glassy_elastic_run(speed, elastic_E2):
     """The paper scene (coarse) with an SLS substrate: slow rolling is the elastic run with E_r, fast rolling with
     E_g: approach, contact area, forces and U of every step within 1e-6."""
-    base = default_scene().with_overrides(COARSE)
+    base = default_scene().with_overrides(COARSE, replaces=("motion.W",))
     visco = rollcontact.run(base.with_overrides(SLS2 + [f"motion.speed={speed}"]))
     elastic = rollcontact.run(base.with_overrides([f"materials.E2={elastic_E2}"]))
     assert_runs_agree(visco, elastic)
@@ -102,7 +102,8 @@ def test_a_viscoelastic_run_file_holds_its_outputs_with_units_and_restarts_from_
     """The run file: history time, pressure_centroid_x, viscous_dissipation, fields q_p2, q_x2, q_y2, summary
     pressure_centroid_x, rolling_resistance_moment (= Fn x_c), viscous_dissipation_per_period, each with its units;
     a restart from step 7 equals the uninterrupted run to round-off (1e-12); without the states it is refused."""
-    scene = default_scene().with_overrides(COARSE + SLS2 + ["motion.speed=2", 'output.fields="all"'])
+    scene = default_scene().with_overrides(COARSE + SLS2 + ["motion.speed=2", 'output.fields="all"'],
+                                           replaces=("motion.W",))
     full = rollcontact.run(scene, tmp_path / "full.h5")
     with h5py.File(tmp_path / "full.h5", "r") as h5:
         for name in ("history/time", "history/pressure_centroid_x", "history/viscous_dissipation", "fields/q_p2"):
@@ -125,7 +126,7 @@ def test_a_viscoelastic_run_file_holds_its_outputs_with_units_and_restarts_from_
 
 def test_a_run_without_a_speed_keeps_its_history_columns():
     """No speed: no time column, no viscoelastic columns (the elastic runs' files are unchanged)."""
-    result = rollcontact.run(default_scene().with_overrides(COARSE))
+    result = rollcontact.run(default_scene().with_overrides(COARSE, replaces=("motion.W",)))
     assert set(result.history) == set(HISTORY_NAMES)
 
 
