@@ -3,11 +3,10 @@
 rollcontact's element loops (the stick/slip division, the CG updates, the spectral scaling, ...) are numba functions.
 Loading them through numba's JIT cache costs every process numba's import and its compiler's start-up, a large part
 of a run's start-up time and resident memory (benchmarks/README.md, "Lean runs"), although nothing is compiled. So the
-kernels of each layer
-(`rollcontact.bem`, `rollcontact.solver`) are compiled once, ahead of time, into one extension module in the cache
-(`numba.pycc`; ROLLCONTACT_CACHE/kernels, default ~/.cache/rollcontact/kernels), named by a digest of the kernel
-sources, numba's, llvmlite's and Python's versions and the processor; a process then imports that module (a
-millisecond) and never imports numba.
+kernels of each layer (`rollcontact.bem`, `rollcontact.solver`) are compiled once, ahead of time, into one extension
+module in the cache (`numba.pycc`; ROLLCONTACT_KERNEL_CACHE, else ROLLCONTACT_CACHE/kernels, default
+~/.cache/rollcontact/kernels), named by a digest of the kernel sources, numba's, llvmlite's and Python's versions and
+the processor; a process then imports that module (a millisecond) and never imports numba.
 
 A kernel module imports this module's decorators:
 
@@ -117,6 +116,9 @@ def ready(layer: str) -> bool | None:
 
 
 def cache_dir() -> Path:
+    """ROLLCONTACT_KERNEL_CACHE, else ROLLCONTACT_CACHE/kernels (default ~/.cache/rollcontact/kernels)."""
+    if os.environ.get("ROLLCONTACT_KERNEL_CACHE"):
+        return Path(os.environ["ROLLCONTACT_KERNEL_CACHE"])
     root = os.environ.get("ROLLCONTACT_CACHE") or os.path.join(
         os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache")), "rollcontact")
     return Path(root) / "kernels"

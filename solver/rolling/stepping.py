@@ -5,11 +5,14 @@ One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
     1. h_n = the undeformed profile shifted to the current sphere centre c_n (seed Eq. 7, any direction);
     2. normal problem with Fn (constant, or the step's Fn of an oscillating load), warm-started from p_{n-1}
                                                                             -> p_n, approach d_n;
-       for uncoupled materials it depends on h_n and Fn alone, and a centre and Fn met before (the sphere comes
-       back to the same positions every period) take the solution found then (`run_path`);
+       for uncoupled elastic materials it depends on h_n and Fn alone, and a centre and Fn met before (the sphere
+       comes back to the same positions every period) take the solution found then (`run_path`);
     3. bound g = mu p_n; tangential shift problem with the force F_n and the previous traction
        tau_{n-1} as memory                                                  -> tau_n, dU_n; U_n = U_{n-1} + dU_n;
     4. coupled materials only: repeat 2-3 with the coupling terms until both settle (solver.rolling.coupled).
+    With viscoelastic bodies (a `memory`, solver.visco.ViscoMemory) steps 2-3 see the history displacement of the
+    bodies' element states (the normal problem as an extra displacement, the tangential one the change of its
+    tangential part as extra slip), and the states then take the step's tractions.
 
 The path is prescribed: a loading phase (Fn alone, then the tangential force in `ramp_steps` increments,
 then any further force levels) followed by `periods` triangle-wave periods of the centre (loads that oscillate
@@ -194,21 +197,25 @@ class StepRecord:
     outer_iterations: int
     wall_time: float
     dissipation: float = 0.0      # frictional work of the step (N mm), solver.rolling.energy.frictional_work
+    viscous_dissipation: float = 0.0   # work the viscous dashpots of viscoelastic bodies dissipated (N mm)
+    memory_states: dict | None = None  # the viscoelastic element states after the step (MPa), by name
 
 
 def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepParams(),
-             state: StepState | None = None) -> Iterator[StepRecord]:
+             state: StepState | None = None, memory=None) -> Iterator[StepRecord]:
     """Step along `path` from `state` (default: unloaded), yielding one StepRecord per step.
 
     op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.rolling.profiles;
     Fn (N) the normal force, constant unless the path carries one per step (`path.normal_forces`, checked here
     before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
-    carries the frictional work of its step (solver.rolling.energy.frictional_work). Raises ContactEdgeError if
+    carries the frictional work of its step (solver.rolling.energy.frictional_work). memory: the element states of
+    viscoelastic bodies (solver.visco.ViscoMemory, of op's effective pair and path.step_time; restored to `state` by
+    the caller), None for elastic bodies. Raises ContactEdgeError if
     the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
     solver fails.
 
-    For uncoupled materials (op.coupled False) the normal problem of a step is the frictionless contact of the gap
-    h_n under Fn, whatever the tractions: its solution is kept by the exact bytes of h_n and Fn (at most
+    For uncoupled elastic materials (op.coupled False, no memory) the normal problem of a step is the frictionless
+    contact of the gap h_n under Fn, whatever the tractions and the history: its solution is kept by the exact bytes of h_n and Fn (at most
     NORMAL_MEMO_BYTES), and a step with the same gap and force takes it instead of solving again (its
     NormalResult's `iterations` 0). An oscillating path comes back to the same centres every period (the paper's
     scenes: 13 distinct centres in 242 steps), so its normal problems are solved in the first period only. A restart
@@ -224,7 +231,7 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
     X, Y = op.grid.mesh()
     grid = op.grid
     state = StepState.initial(grid.shape) if state is None else state
-    known = None if op.coupled else _KnownNormals(op, params.normal)
+    known = None if (op.coupled or memory is not None) else _KnownNormals(op, params.normal)
     if known is not None and state.step >= 0:
         # a restart: the normal solutions of the steps before it, as the run that stored it had them
         pressure = np.zeros(grid.shape)
@@ -242,15 +249,22 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             # a bilinear sub-cell shift smears the contact edge and measured worse: 10.0 vs 9.0 it/step)
             guess = _moved(state.pressure, centre - path.centres[state.step], grid)
         normal = None if known is None else known.solution(h, _force(path, Fn, n), state.pressure, guess)
+        extra_n, extra_t = (None, None) if memory is None else memory.terms()
         normal, tangential, outer = solve_coupled_step(
             op, h, _force(path, Fn, n), path.forces[n], state.pressure, state.traction, mu=mu,
             normal_params=params.normal, tangential_params=params.tangential,
-            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess, normal=normal)
+            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess,
+            extra_slip=extra_t, extra_displacement=extra_n, normal=normal)
         check_contact_inside(normal.contact, n, centre)
+        viscous, states = 0.0, None
+        if memory is not None:
+            total = memory.advance(normal.pressure, tangential.traction, tangential.displacement)
+            tangential = replace(tangential, displacement=total)
+            viscous, states = memory.dissipation, memory.states()
         state = StepState(n, normal.pressure, tangential.traction,
                           state.rigid_shift + tangential.shift_increment, normal.approach)
         work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
-        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work)
+        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, viscous, states)
 
 
 def _force(path, Fn, n) -> float:

@@ -26,8 +26,11 @@ print(json.dumps({"numba": "numba" in sys.modules, "U_x": h["U_x"].tolist(), "F_
 
 
 def run_process(env=None, prelude=""):
+    """RUN in a fresh process with `env` added; a ROLLCONTACT_CACHE given there holds its kernels too."""
+    base = {k: v for k, v in os.environ.items() if not (env and "ROLLCONTACT_CACHE" in env
+                                                        and k == "ROLLCONTACT_KERNEL_CACHE")}
     proc = subprocess.run([sys.executable, "-c", prelude + RUN], capture_output=True, text=True, timeout=900,
-                          env=dict(os.environ, **(env or {})))
+                          env=dict(base, **(env or {})))
     assert proc.returncode == 0, proc.stderr[-2000:]
     return json.loads(proc.stdout.strip().splitlines()[-1])
 
@@ -83,6 +86,7 @@ def test_signatures_are_read_argument_by_argument(signature, specs):
 
 def test_a_build_that_fails_is_recorded_warned_about_once_and_not_retried(tmp_path, monkeypatch):
     monkeypatch.setenv("ROLLCONTACT_CACHE", str(tmp_path))
+    monkeypatch.delenv("ROLLCONTACT_KERNEL_CACHE", raising=False)
     calls = []
 
     def failing(layer, path):
