@@ -68,6 +68,7 @@ def parse_deck(text: str, name: str = "deck", folder=None, label: str | None = N
             start = lines.lines[lines.pos][0] if not lines.at_end else lines.last_line
             case = Case(number=counters[count_key], module=module.value, line=start, element=(reid, cpid))
             _read_safely(lines, case, state)
+            case.values, case.effective = dict(state.values), dict(state.effective)
             deck.cases.append(case)
             if case.digits["R"] in (1, 3):
                 break

@@ -32,6 +32,7 @@ def read_case(text: DeckText, case: Case, state: ElementState):
                                                          f"{got['D_COMB'].value!r}: D_SEP >= D_COMB is needed")
         state.drop("DX", "DS", "DQREL", "A_SEP", "D_SEP", "D_COMB", "D_TURN", "G_MISS")
         state.keep(case, got)
+        state.effective["D"] = dg["D"]
     _read_track(text, case, state)
     _read_wheelset(text, case, state)
     groups.read_subsurface(text, case, state)
