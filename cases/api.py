@@ -6,6 +6,7 @@
     same = rollcontact.read_run("out.h5")                   # a stored run as the same RunResult
     rollcontact.sweep(scene, {"load.ft": [0.2, 0.4], "motion.angle": [0, 90]}, "results/sweep")
     rollcontact.limit_search(scene, {"motion.w": [0.23]}, "results/limits")
+    rollcontact.import_contact("cattaneo.inp", "imported")   # a CONTACT deck as scenes and a report
 
 Units: mm, N, MPa, degrees; dimensionless f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9). Errors are the
 CLI's: SceneError (a scene key out of range, naming the key and the range), InputError (a bad argument, naming
@@ -22,7 +23,8 @@ from rollcontact.cases.results.outputs import check_output
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.scene.scene import Scene, default_scene
 
-__all__ = ["load_scene", "run", "restart", "read_run", "stresses", "sweep", "limit_search", "RunResult", "Scene",
+__all__ = ["load_scene", "run", "restart", "read_run", "stresses", "sweep", "limit_search", "import_contact",
+           "RunResult", "Scene",
            "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted"]
 
 
@@ -136,6 +138,21 @@ def limit_search(scene: Scene, vary, output, *, overrides=None, tol=0.01, jobs=N
     from rollcontact.cases.sweep.limit_search import search_limits
     return search_limits(_as_scene(scene), vary_specs(vary), output, overrides=Scene.assignments(overrides or []),
                          tol=tol, jobs=jobs, scheduler=scheduler, overwrite=overwrite, progress=_stream(progress))
+
+
+def import_contact(deck, output=None, *, overwrite=False):
+    """Import a CONTACT input deck (`<experim>.inp`, or `.inp.gz`) as `rollcontact import-contact` does: every case
+    rollcontact can pose becomes a scene (a history of cases one scene run as one), the others are reported with
+    each digit or value rollcontact cannot pose (docs/contact_decks.md). Returns a DeckImport (`problems`, `status`
+    'yes' / 'partly' / 'no', `summary()`, `report()`, `scene_text(problem)`).
+
+    output: a folder for the scene files `<deck>_case<N>.toml`, the profiles they name, the report
+    `<deck>_import.md` and `<deck>_import.json`; None writes nothing. overwrite: replace files that exist (else
+    OutputExistsError, before anything is written). DeckError (an InputError) names the line and the field of a deck
+    that cannot be read.
+    """
+    from rollcontact.cases.decks.importer import import_contact as _import
+    return _import(deck, output, overwrite=overwrite)
 
 
 def vary_specs(vary) -> list[str]:

@@ -10,12 +10,14 @@ The Python API (the `rollcontact` command is a thin layer over it; see README, "
     stresses(path, steps=None, depths=None)  add the subsurface stresses of stored steps to a run file
     sweep(scene, vary, output, ...)          a parameter sweep, as `rollcontact sweep`
     limit_search(scene, vary, output, ...)   the shakedown-limit search, as `rollcontact limit-search`
+    import_contact(deck, output=None)        a CONTACT input deck as scenes and a report, as `import-contact`
 
 Subpackages, in the order data flows: `rollcontact.cases` (scenes, runs, results, sweeps, plots, CLI) ->
 `rollcontact.bem` (half-space: materials, grid, influence coefficients, FFT operator) -> `rollcontact.solver`
 (normal and tangential solvers, rolling, MDR model).
 """
-_API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "RunResult", "Scene",
+_API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "import_contact", "RunResult",
+        "Scene",
         "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted")
 __all__ = ["__version__", *_API]
 

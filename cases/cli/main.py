@@ -182,6 +182,7 @@ def build_parser() -> argparse.ArgumentParser:
     from rollcontact.cases.cli import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
     from rollcontact.cases.cli import stresses_cmd; stresses_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import creep_cmd; creep_cmd.register(sub)  # noqa: E702
+    from rollcontact.cases.cli import import_cmd; import_cmd.register(sub)  # noqa: E702
     return parser
 
 

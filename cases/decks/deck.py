@@ -6,6 +6,7 @@ element; the case numbers count as the reference program's 'Case N' (one count f
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import gzip
 from pathlib import Path
 
 from rollcontact.cases.decks import module1, module3
@@ -26,14 +27,20 @@ class Deck:
 
 
 def read_deck(path) -> Deck:
-    """Read the deck file `path` (`<experim>.inp`); DeckError for a deck the reference program would refuse or that
-    cannot be read (missing file included), naming the line and the field."""
+    """Read the deck file `path` (`<experim>.inp`, or gzipped `<experim>.inp.gz`); DeckError for a deck the
+    reference program would refuse or that cannot be read (missing file included), naming the line and the field."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="latin-1")
-    except OSError as exc:
-        raise DeckError(path.name, None, "deck file", f"cannot be read ({exc.strerror})") from None
-    return parse_deck(text, name=path.stem, folder=path.parent, label=path.name)
+        if path.suffix == ".gz":
+            with gzip.open(path, "rt", encoding="latin-1") as f:
+                text = f.read()
+        else:
+            text = path.read_text(encoding="latin-1")
+    except (OSError, EOFError) as exc:
+        raise DeckError(path.name, None, "deck file", f"cannot be read ({getattr(exc, 'strerror', None) or exc})") \
+            from None
+    name = path.name.removesuffix(".gz").removesuffix(".inp")
+    return parse_deck(text, name=name, folder=path.parent, label=path.name)
 
 
 def parse_deck(text: str, name: str = "deck", folder=None, label: str | None = None) -> Deck:

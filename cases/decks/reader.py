@@ -29,9 +29,9 @@ _KINDS = {"i": "an integer", "d": "a real number", "a": "an angle (real, optiona
 class DeckError(InputError):
     """A deck that cannot be read: the message names the deck, the line (or the end of the file) and the field."""
 
-    def __init__(self, deck: str, line: int | None, field: str, message: str):
+    def __init__(self, deck: str, line: int | None, field: str, message: str, after: int | None = None):
         self.deck, self.line, self.field = deck, line, field
-        where = f"line {line}" if line else "end of file"
+        where = f"line {line}" if line else "end of file" + (f" (after line {after})" if after else "")
         super().__init__(f"{deck}, {where}: {field}: {message}")
 
 
@@ -116,8 +116,8 @@ class DeckText:
 
     def _next(self, field: str, group: str):
         if self.at_end:
-            raise DeckError(self.name, None, field, f"the deck ends here (after line {self.last_line}) where "
-                                                    f"{field} ({group}) is expected: the deck is truncated")
+            raise DeckError(self.name, None, field, f"missing: the deck is truncated (expected here: {group})",
+                            after=self.last_line)
         line = self.lines[self.pos]
         self.pos += 1
         return line
