@@ -28,6 +28,7 @@ import time
 
 import rollcontact
 from rollcontact.cases.decks.compare import compare_problem
+from rollcontact.cases.decks.draft import show as _show
 from rollcontact.cases.decks.refout import read_refout
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -69,7 +70,7 @@ def why_not(result) -> str:
 
 
 def _label(u) -> str:
-    text = f"{u.name} = {u.value}" if u.value is not None else u.name
+    text = f"{u.name} = {_show(u.value)}" if u.value is not None else u.name
     needs = u.needs.split(";")[0].replace("needs ", "")
     return f"{text}: {needs}"
 

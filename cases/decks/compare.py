@@ -90,6 +90,8 @@ def _case(problem, result, step: int, ref: CaseOutput, number: int, cmp: Compari
         cmp.add(number, "MZ", ref.find("MZ"), mz, mu_fn * math.sqrt(area / math.pi))
     if creep is not None and problem.kind in ("steady", "transient"):
         cx, cy = creep[0] * c - creep[1] * s, creep[0] * s + creep[1] * c
+        phi, (xo, yo) = (result.summary.get("phi") or 0.0), f.get("spin_centre", (0.0, 0.0))
+        cx, cy = cx + phi * (f["y0"] - yo), cy - phi * (f["x0"] - xo)     # about the deck's spin centre
         for label, ours in (("CREEP_X", cx), ("CREEP_Y", cy)):
             cmp.add(number, label.replace("_", " "), ref.find(label), ours)
     if problem.kind == "shift" and step > 0:
@@ -161,6 +163,7 @@ def _wheelrail(problem, result, reference: dict[int, CaseOutput], cmp: Compariso
     cmp.add(number, "FX", ref.find("FX", patch=k), -ours["Fx"], mu_fn)
     cmp.add(number, "FS", ref.find("FS", patch=k), ours["Fy"], mu_fn)
     cmp.add(number, "PMAX", ref.find("PMAX", patch=k), ours["pmax"])
+    cmp.add(number, "approach", ref.find("APPROACH", patch=k), ours["penetration"])
     cmp.add(number, "CKSI", ref.find("CKSI", patch=k), -ours["xi"])
     cmp.add(number, "CETA", ref.find("CETA", patch=k), ours["eta"])
     cmp.add(number, "CPHI", ref.find("CPHI", patch=k), ours["phi"])

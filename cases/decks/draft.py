@@ -21,14 +21,15 @@ class Unsupported:
         where = f" (line {self.line})" if self.line else ""
         if self.value is None:
             return f"{self.name}{where}: {self.needs}"
-        return f"{self.name} = {_show(self.value)}{where}: {self.needs}"
+        return f"{self.name} = {show(self.value)}{where}: {self.needs}"
 
 
-def _show(value) -> str:
+def show(value) -> str:
+    """A value as the report writes it (6 digits, a long list cut after 6 items)."""
     if isinstance(value, float):
         return f"{value:.6g}"
     if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(_show(v) for v in value[:6]) + (", ..." if len(value) > 6 else "") + "]"
+        return "[" + ", ".join(show(v) for v in value[:6]) + (", ..." if len(value) > 6 else "") + "]"
     return str(value)
 
 

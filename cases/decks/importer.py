@@ -14,7 +14,7 @@ import json
 from pathlib import Path
 import shutil
 
-from rollcontact.bem.errors import OutputExistsError, SceneError
+from rollcontact.bem.errors import InputError, OutputExistsError
 from rollcontact.cases.decks import problems as P
 from rollcontact.cases.decks.deck import Deck, read_deck
 from rollcontact.cases.decks.draft import Draft
@@ -85,10 +85,16 @@ def _convert(problem, deck: Deck):
     if problem.kind == "skipped":
         return
     problem.name = _name(deck.name, problem.numbers)
-    if problem.cases[0].module == 1:
-        map_wheelrail(problem, deck.folder)
-    else:
-        P.map_problem(problem)
+    try:
+        if problem.cases[0].module == 1:
+            map_wheelrail(problem, deck.folder)
+        else:
+            P.map_problem(problem)
+    except (ValueError, ZeroDivisionError, OverflowError, TypeError) as exc:   # an input the mapping cannot take
+        problem.draft = problem.draft or Draft()
+        problem.draft.refuse(f"case {problem.numbers[0]}", None, f"the importer cannot map this input "
+                                                                 f"({type(exc).__name__}: {exc})")
+        return
     d = problem.draft
     if d.ok and problem.geometry is not None:
         _set_margin(problem, d)
@@ -135,7 +141,7 @@ def _set_margin(problem, d: Draft):
     from rollcontact.cases.run.discretise import contact_extent
     try:
         scene = _scene_of(problem, d, run_limits=False)
-    except SceneError as exc:
+    except (InputError, ValueError, ZeroDivisionError, OverflowError) as exc:
         d.refuse(f"scene {problem.name}", None, f"rollcontact refuses it: {exc}")
         return
     grid_margin(d, problem.geometry, contact_extent(scene))
@@ -145,7 +151,7 @@ def _validate(problem, d: Draft):
     """The checks `rollcontact run` makes of a scene file (ranges, resolution, steps, profile files)."""
     try:
         _scene_of(problem, d, run_limits=True)
-    except SceneError as exc:
+    except (InputError, ValueError, ZeroDivisionError, OverflowError) as exc:
         d.refuse(f"scene {problem.name}", None, f"rollcontact refuses it: {exc}")
 
 

@@ -254,12 +254,14 @@ def map_grid(case: Case, d: Draft, geo: Geometry):
 
 
 def grid_margin(d: Draft, geo: Geometry, extent: tuple[float, float]):
-    """[grid] margin so that rollcontact's grid covers the deck's potential contact about the contact's centre
-    (`extent`: the half-widths rollcontact covers without a margin, mm)."""
+    """[grid] margin: beyond rollcontact's estimate of the contact (`extent`, its half-widths in mm), as far as the
+    deck's potential contact reaches about the contact's centre, but at least 2 and at most 10 elements (the grid
+    only has to hold the contact: rollcontact stops with ContactEdgeError if a contact reaches its edge)."""
     half_x = max(abs(geo.xl - geo.x0), abs(geo.xh - geo.x0))
     half_y = max(abs(geo.yl - geo.y0), abs(geo.yh - geo.y0))
-    margin = max(geo.dx, geo.dy, half_x - extent[0], half_y - extent[1])
-    d.set("grid", "margin", float(f"{margin:.6g}"), "covers the deck's potential contact "
+    h = max(geo.dx, geo.dy)
+    margin = min(max(half_x - extent[0], half_y - extent[1], 2 * h), 10 * h)
+    d.set("grid", "margin", float(f"{margin:.6g}"), "2-10 elements, towards the deck's potential contact "
                                                     f"[{geo.xl:.6g}, {geo.xh:.6g}] x [{geo.yl:.6g}, {geo.yh:.6g}] mm")
 
 

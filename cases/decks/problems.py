@@ -90,7 +90,7 @@ def map_problem(problem: Problem) -> Problem:
         return problem
     M.map_grid(head, d, geo)
     problem.geometry = geo
-    problem.frame = {"x0": geo.x0, "y0": geo.y0, "h_min": geo.h_min, "dx": geo.dx, "dy": geo.dy,
+    problem.frame = {"x0": geo.x0, "y0": geo.y0, "spin_centre": (head.value("SPINXO", 0.0), head.value("SPINYO", 0.0)), "h_min": geo.h_min, "dx": geo.dx, "dy": geo.dy,
                      "mu_fn": (head.value("FKIN") or 0) * (head.value("FN") or 0), "K": M.difference_parameter(head)}
     kind = problem.kind
     if kind == "normal":
