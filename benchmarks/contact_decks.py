@@ -7,8 +7,8 @@ imported with `rollcontact.import_contact` into DIR/imports/<deck>/ (its scenes 
 table says per deck how many of its computed cases convert (yes / partly / no) and why the others do not. Every
 converted problem is then run and compared case by case with the figures of the deck's reference output
 (cases.decks.compare: forces, creepages or shifts, approach, maximum pressure, contact and adhesion areas, the
-traction where the output prints it). --quick compares only the first converted problem of the decks in
-QUICK_DECKS (the import and the compatibility table stay complete).
+traction where the output prints it). --quick compares only the decks in QUICK_DECKS (the import and the
+compatibility table stay complete).
 
 Written to DIR (default results/contact_decks/): contact_decks_tables.md (both tables, as in the page),
 contact_decks.json (every compared figure). --page PAGE also replaces the generated part of PAGE (between its
@@ -130,8 +130,6 @@ def main(argv=None) -> int:
                             "grid": list(cmp.grid), "cpu_seconds": cmp.seconds, "rows": cmp.rows})
             print(f"{problem.name}: {cmp.status}, {cmp.seconds:.2f} s CPU, largest differences (%): "
                   + ", ".join(f"{q} {v:.3g}" for q, v in cmp.largest().items()), flush=True)
-            if args.quick:
-                break
     machine = f"{platform.machine()}, {os.cpu_count()} cores, load {os.getloadavg()[0]:.1f}"
     stamp = (f"`benchmarks/contact_decks.py{' --quick' if args.quick else ''}`, {datetime.date.today()}, {machine}; "
              f"the slowest import {t_import:.2f} s CPU")
