@@ -19,7 +19,7 @@ import math
 
 from rollcontact.cases.decks import mapping as M
 from rollcontact.cases.decks.case import Case
-from rollcontact.cases.decks.draft import Draft
+from rollcontact.cases.decks.draft import Draft, show
 
 #: the values that must stay the same along one history (besides the digits L, M, C of the effective input)
 STATIC = ("FN", "POISS1", "POISS2", "GG1", "GG2", "FSTAT", "FKIN", "IPOTCN", "A1", "B1", "AOB", "AA", "BB", "B",
@@ -117,19 +117,19 @@ def map_problem(problem: Problem) -> Problem:
 
 def _same_static(head: Case, case: Case, d: Draft):
     """Refuse a history whose normal force, materials, friction or geometry changes from case to case."""
-    for name in STATIC:
-        a, b = head.value(name), case.value(name)
-        if a != b and a is not None and b is not None:
-            d.refuse(f"case {case.number}: {name}", b, f"differs from case {head.number}'s {a!r} within one history; "
-                                                       "rollcontact keeps the normal force, materials, friction and "
-                                                       "geometry of a run", case.line_of(name))
-    for dig in ("L", "M", "C", "N"):
+    for dig in ("N", "L", "M", "C"):
         a, b = head.effective.get(dig, head.digits[dig]), case.effective.get(dig, case.digits[dig])
         if dig == "N":
             a, b = head.digits["N"], case.digits["N"]
         if a != b:
-            d.refuse(f"case {case.number}: {M.digit(case, dig)}", b, f"differs from case {head.number}'s {a} within "
+            d.refuse(f"case {case.number}: {M.digit(case, dig)}", b, f"differs from case {head.number} ({a}) within "
                                                                       "one history", case.digit_lines[dig])
+    for name in STATIC:
+        a, b = head.value(name), case.value(name)
+        if a != b and a is not None and b is not None:
+            d.refuse(f"case {case.number}: {name}", b, f"differs from case {head.number} ({show(a)}) within one "
+                                                       "history; rollcontact keeps the normal force, materials, "
+                                                       "friction and geometry of a run", case.line_of(name))
 
 
 def _normal(problem: Problem, d: Draft):

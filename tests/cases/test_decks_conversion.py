@@ -139,7 +139,7 @@ def test_refusal_of_a_history_converts_its_head_alone_and_reports_the_rest(tmp_p
     result = rollcontact.import_contact(tmp_path / "changes.inp")
     head, rest = result.problems
     assert head.converted and head.numbers == [1] and not rest.converted and rest.numbers == [2, 3, 4, 5]
-    assert "case 3: FN = 120 (line 24): differs" in rest.draft.unsupported[1].text()
+    assert "case 3: FN = 120 (line 24): differs from case 1 (100)" in rest.draft.unsupported[1].text()
     assert result.status == "partly"
 
 
