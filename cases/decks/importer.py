@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import json
 from pathlib import Path
 import shutil
+import tempfile
 
 from rollcontact.bem.errors import InputError, OutputExistsError
 from rollcontact.cases.decks import problems as P
@@ -71,17 +72,18 @@ def import_contact(deck, output=None, *, overwrite: bool = False) -> DeckImport:
     the line and field of a deck that cannot be read; OutputExistsError a file that exists without `overwrite`."""
     parsed = read_deck(deck)
     problems = []
-    for problem in P.group(parsed.cases):
-        problem.deck = parsed.name
-        _convert(problem, parsed)
-        problems += _split_failed_history(problem, parsed)
-    result = DeckImport(parsed, problems)
-    if output is not None:
-        _write(result, Path(output), overwrite)
+    with tempfile.TemporaryDirectory(prefix="rollcontact-import-") as scratch:
+        for problem in P.group(parsed.cases):
+            problem.deck = parsed.name
+            _convert(problem, parsed, Path(scratch))
+            problems += _split_failed_history(problem, parsed, Path(scratch))
+        result = DeckImport(parsed, problems)
+        if output is not None:
+            _write(result, Path(output), overwrite)
     return result
 
 
-def _convert(problem, deck: Deck):
+def _convert(problem, deck: Deck, scratch: Path):
     if problem.kind == "skipped":
         return
     problem.name = _name(deck.name, problem.numbers)
@@ -96,13 +98,15 @@ def _convert(problem, deck: Deck):
                                                                  f"({type(exc).__name__}: {exc})")
         return
     d = problem.draft
+    if d.ok and problem.geometry is not None and problem.geometry.profile is not None:
+        _profile_file(problem, d, scratch)
     if d.ok and problem.geometry is not None:
         _set_margin(problem, d)
     if d.ok:
         _validate(problem, d)
 
 
-def _split_failed_history(problem, deck: Deck) -> list:
+def _split_failed_history(problem, deck: Deck, scratch: Path) -> list:
     """A history that cannot run as one: its head alone when it is a problem of its own (it starts from zero
     tractions), and the continuation, not converted, with the history's reasons."""
     head = problem.cases[0]
@@ -110,7 +114,7 @@ def _split_failed_history(problem, deck: Deck) -> list:
         return [problem]
     alone = P.Problem(deck.name, [head], {0: "normal", 1: "single shift", 2: "single transient",
                                           3: "steady"}[head.digits["T"]])
-    _convert(alone, deck)
+    _convert(alone, deck, scratch)
     if not alone.converted:
         return [problem]
     rest = P.Problem(deck.name, problem.cases[1:], "history", draft=Draft(), name=_name(deck.name, problem.numbers))
@@ -123,6 +127,16 @@ def _split_failed_history(problem, deck: Deck) -> list:
     return [alone, rest]
 
 
+def _profile_file(problem, d: Draft, scratch: Path):
+    """The sampled undeformed distance as `<scene>_profile.npz` (x, y, h; cases.scene.profile_file)."""
+    import numpy as np
+    x, y, h = problem.geometry.profile
+    path = scratch / f"{problem.name}_profile.npz"
+    np.savez(path, x=x, y=y, h=h)
+    d.files["profile"] = path
+    d.sections["geometry"]["path"] = path.name
+
+
 def _name(deck: str, numbers: list[int]) -> str:
     return f"{deck}_case{numbers[0]}" if len(numbers) == 1 else f"{deck}_cases{numbers[0]}-{numbers[-1]}"
 
@@ -133,6 +147,8 @@ def _scene_of(problem, d: Draft, run_limits: bool):
     for key in ("wheel_profile", "rail_profile"):
         if key in d.files:
             data["wheelrail"][key] = str(d.files[key])
+    if "profile" in d.files:
+        data["geometry"]["path"] = str(d.files["profile"])
     return Scene.from_dict(data, name=problem.name, run_limits=run_limits)
 
 

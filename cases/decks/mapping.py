@@ -156,6 +156,7 @@ class Geometry:
     mx: int = 0
     my: int = 0
     symmetric_y: bool = True
+    profile: tuple | None = None
 
 
 def map_geometry(case: Case, d: Draft) -> Geometry | None:
@@ -177,6 +178,10 @@ def map_geometry(case: Case, d: Draft) -> Geometry | None:
         geo = _quadric(case, d)
     if geo is None:
         return None
+    if geo.profile is not None:
+        d.set("geometry", "shape", "file", f"IBASE = {case.value('IBASE')} (line {case.line_of('IBASE')}), sampled")
+        d.set("geometry", "path", "", "the undeformed distance at the deck's element centres")
+        return geo
     if not (geo.A > 0 and geo.B > 0):
         d.refuse("undeformed distance", f"A = {geo.A:g}, B = {geo.B:g} 1/mm",
                  "needs a 2D contact (a zero curvature) or a concave body; rollcontact's ellipsoid has A, B > 0", line)
@@ -218,11 +223,7 @@ def _quadric(case: Case, d: Draft) -> Geometry | None:
     if iplan != 1:
         d.refuse("IPLAN", iplan, "needs a planform that keeps elements out of contact", case.line_of("IPLAN"))
     if ibase != 1:
-        what = {2: "a body of revolution with a sampled lateral profile", 3: "a quadratic plus two sines",
-                9: "an undeformed distance given per element"}[ibase]
-        d.refuse("IBASE", ibase, f"needs {what} ([geometry] shape = 'file'; not mapped by the importer)",
-                 case.line_of("IBASE"))
-        return None
+        return _sampled(case, d)
     b1, b2, b3, b4, b5, b6 = case.value("B")
     if b2 != 0:
         d.refuse("B(2)", b2, "needs an ellipsoid turned in the plane (an x y term); rollcontact's axes are x and y",
@@ -240,6 +241,23 @@ def _quadric(case: Case, d: Draft) -> Geometry | None:
                                             if k in case.values})
     return Geometry(A=b1, B=b3, x0=x0, y0=y0, h_min=h_min, xl=xl, xh=xl + mx * dx, yl=yl, yh=yl + my * dy, dx=dx,
                     dy=dy, mx=mx, my=my, symmetric_y=(b5 == 0))
+
+
+def _sampled(case: Case, d: Draft) -> Geometry | None:
+    """IBASE = 2, 3, 9 as a sampled profile (cases.decks.profiles) about the element of least h."""
+    import numpy as np
+    from rollcontact.cases.decks.module3 import explicit_grid
+    from rollcontact.cases.decks.profiles import sampled_profile
+    xl, yl, dx, dy, mx, my = explicit_grid({k: case.values[k] for k in ("IPOTCN", "MX", "MY", "XL", "YL", "DX", "DY",
+                                                                         "XH", "YH", "XC1", "YC1", "XCM", "YCM")
+                                            if k in case.values})
+    got = sampled_profile(case, d, xl, yl, dx, dy, mx, my)
+    if got is None:
+        return None
+    x, y, h, (x0, y0) = got
+    return Geometry(A=0.0, B=0.0, x0=x0, y0=y0, h_min=0.0, xl=xl, xh=xl + mx * dx, yl=yl, yh=yl + my * dy, dx=dx,
+                    dy=dy, mx=mx, my=my, symmetric_y=bool(np.allclose(h, h[::-1, :], rtol=1e-12, atol=0.0)),
+                    profile=(x, y, h))
 
 
 def map_grid(case: Case, d: Draft, geo: Geometry):

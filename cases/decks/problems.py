@@ -190,7 +190,7 @@ def _set_kinematics(case: Case, d: Draft, geo, chi: float, origin: str) -> bool:
         d.set("rolling", "xi", xi, origin + M.where(case, "CKSI"))
         d.set("rolling", "eta", eta, M.where(case, "CETA"))
         d.set("rolling", "phi", phi, M.where(case, "CPHI"))
-        if geo.x0 or geo.y0 or case.value("SPINXO") or case.value("SPINYO"):
+        if math.hypot(geo.x0, geo.y0) > 1e-9 * geo.dx or case.value("SPINXO") or case.value("SPINYO"):
             d.note("creepages turned to the contact's centre: xi = CKSI - CPHI (y0 - SPINYO), eta = CETA + CPHI "
                    "(x0 - SPINXO)")
         return True

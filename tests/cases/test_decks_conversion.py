@@ -97,6 +97,26 @@ def test_a_cattaneo_shift_then_rolling_is_one_transient_run():
     assert any("FY = 0" in n for n in p.draft.notes)
 
 
+def test_an_undeformed_distance_given_per_element_runs_as_the_same_ellipsoid(tmp_path):
+    """sampled.inp: h = x^2/100 + y^2/50 as the quadric (case 1) and given per element (IBASE = 9, case 2, a sampled
+    `file` profile): the same steady rolling problem on the same grid, so the same forces, approach and area (the
+    profile's cubic interpolation reproduces a quadratic; a wrong element order would swap Rx and Ry)."""
+    import numpy as np
+    result = _imported("sampled", tmp_path)
+    quadric, sampled = result.problems
+    assert sampled.draft.sections["geometry"] == {"shape": "file", "path": "sampled_case2_profile.npz"}
+    with np.load(tmp_path / "sampled_case2_profile.npz") as f:
+        x, y, h = f["x"], f["y"], f["h"]
+    X, Y = np.meshgrid(x, y)
+    inside = (np.abs(X) < 2.5) & (np.abs(Y) < 1.9)
+    assert np.allclose(h[inside], (X ** 2 / 100 + Y ** 2 / 50)[inside], rtol=0, atol=1e-9)
+    runs = [rollcontact.run(rollcontact.load_scene(tmp_path / f"{p.name}.toml")) for p in (quadric, sampled)]
+    for key in ("F_x", "F_y"):
+        assert runs[1].summary[key] == pytest.approx(runs[0].summary[key], rel=1e-5)
+    for key in ("approach", "contact_area"):
+        assert runs[1].history[key][0] == pytest.approx(runs[0].history[key][0], rel=1e-5)
+
+
 # --- refusals ---------------------------------------------------------------------------------------------------------
 BASE = (DECKS / "steady_spin.inp").read_text().split(" 3   MODULE\n  203120")[0] + " 0   MODULE\n"
 
