@@ -118,13 +118,27 @@ def _split_failed_history(problem, deck: Deck, scratch: Path) -> list:
     if not alone.converted:
         return [problem]
     rest = P.Problem(deck.name, problem.cases[1:], "history", draft=Draft(), name=_name(deck.name, problem.numbers))
-    rest.draft.refuse(f"cases {rest.numbers[0]}-{rest.numbers[-1]}", "P = 0",
+    rest.draft.refuse(f"cases {rest.numbers[0]}-{rest.numbers[-1]} (P = 0)", None,
                       f"continue the history of case {head.number} (converted alone), which rollcontact cannot pose "
                       "as one run:")
     rest.draft.unsupported += problem.draft.unsupported
     rest.draft.notes += problem.draft.notes
     rest.draft.ignored += problem.draft.ignored
     return [alone, rest]
+
+
+def steps_text(steps: dict) -> str:
+    """'case 1 -> step 0, cases 2-57 -> steps 1-56': the run's steps answering the cases, consecutive runs joined."""
+    items, parts = list(steps.items()), []
+    i = 0
+    while i < len(items):
+        j = i
+        while j + 1 < len(items) and items[j + 1][0] == items[j][0] + 1 and items[j + 1][1] == items[j][1] + 1:
+            j += 1
+        (c0, s0), (c1, s1) = items[i], items[j]
+        parts.append(f"case {c0} -> step {s0}" if i == j else f"cases {c0}-{c1} -> steps {s0}-{s1}")
+        i = j + 1
+    return ", ".join(parts)
 
 
 def _profile_file(problem, d: Draft, scratch: Path):
@@ -184,8 +198,7 @@ def _title(deck: Deck, problem) -> list[str]:
                                                                 "degrees") + "; each key's origin in the deck beside it",
              f"run: {run}"]
     if problem.steps and len(problem.steps) > 1:
-        lines.append("steps of the run answering the deck's cases: " +
-                     ", ".join(f"case {c} -> step {s}" for c, s in problem.steps.items()))
+        lines.append("steps of the run answering the deck's cases: " + steps_text(problem.steps))
     for note in problem.draft.notes:
         lines.append("note: " + note)
     return lines

@@ -11,7 +11,7 @@ def _cases(numbers: list[int]) -> str:
 
 def report_text(result) -> str:
     """The report of a DeckImport (cases.decks.importer)."""
-    from rollcontact.cases.decks.importer import kind_text
+    from rollcontact.cases.decks.importer import kind_text, steps_text
     deck = result.deck
     lines = [f"# CONTACT deck `{deck.name}.inp`: import report", "", result.summary() + f" (converted: "
              f"{result.status}).", ""]
@@ -33,8 +33,8 @@ def report_text(result) -> str:
             continue
         d = p.draft
         if p.converted:
-            lines.append(f"Converted: `{p.name}.toml`" + (" (one run; " + ", ".join(
-                f"case {c} is step {s}" for c, s in p.steps.items()) + ")" if len(p.steps) > 1 else "") + ".")
+            lines.append(f"Converted: `{p.name}.toml`" + (f" (one run; {steps_text(p.steps)})" if len(p.steps) > 1
+                                                          else "") + ".")
             if d.run_options.get("stresses"):
                 lines.append("Subsurface stresses: `rollcontact run ... --stresses --depths " +
                              ",".join(f"{z:g}" for z in d.run_options["depths"]) + "`.")
