@@ -209,3 +209,32 @@ def test_a_wheel_on_its_rail_maps_to_wheelrail_with_contacts_conventions(tmp_pat
     wr = p.draft.sections["wheelrail"]
     assert p.converted and wr["side"] == "left" and wr["y"] == -0.5 and wr["yaw"] == -0.0012
     assert wr["omega"] == pytest.approx(4.3474134) and wr["Fz"] == 10000.0 and wr["rail_inclination"] == 0.0
+
+
+def test_a_prepared_case_is_skipped_and_the_history_goes_on(tmp_path):
+    """R = 2: the reference program reads the case (its values are inherited) but computes nothing."""
+    text = (DECKS / "shift_history.inp").read_text()
+    third = " 0110330      H-G-I-A-O-W-R\n  100.0  -0.20"
+    assert third in text
+    (tmp_path / "prepared.inp").write_text(text.replace(third, " 0110332      H-G-I-A-O-W-R\n  100.0  -0.20"))
+    result = rollcontact.import_contact(tmp_path / "prepared.inp")
+    history, skipped = result.problems
+    assert skipped.kind == "skipped" and skipped.numbers == [4] and "R = 2" in skipped.reason
+    assert history.converted and history.numbers == [1, 2, 3, 5] and history.steps == {1: 0, 2: 1, 3: 2, 5: 3}
+    assert history.draft.sections["load"]["levels"] == [0.6, -0.4]
+    assert "| case 4 | skipped | skipped |  |" in result.report()
+
+
+def test_subsurface_blocks_become_the_runs_depths(tmp_path):
+    text = (DECKS / "steady_spin.inp").read_text().replace("  203100      P-B-T-N-F-S", "  203103      P-B-T-N-F-S")
+    blocks = ("  0.004  0.0  0.004  -0.004  0.0  0.001     B(1..6): h = 0.004 (x - 0.5)^2 + 0.004 y^2\n"
+              "  1 1     MATFIL_S, OUTPUT_S\n  1   ISUBS\n  3 0.0 0.5   NZ, ZL, DZ\n  5   ISUBS\n  2\n  2.0 0.25\n"
+              "  0  ISUBS\n")
+    text = text.replace("  0.004  0.0  0.004  -0.004  0.0  0.001     B(1..6): h = 0.004 (x - 0.5)^2 + 0.004 y^2\n",
+                        blocks, 1)
+    (tmp_path / "deep.inp").write_text(text)
+    result = rollcontact.import_contact(tmp_path / "deep.inp")
+    one = result.problems[0]
+    assert one.converted and one.draft.run_options == {"stresses": True, "depths": [0.0, 0.25, 0.5, 1.0, 2.0]}
+    assert "# run: rollcontact run deep_case1.toml --stresses --depths 0,0.25,0.5,1,2" in result.scene_text(one)
+    assert not result.problems[1].draft.run_options                   # S = 0 in case 2
