@@ -4,7 +4,7 @@
 
 Writes DIR/<deck>_case<N>.toml for every case (or history of cases) rollcontact can pose, the profile files they
 name, DIR/<deck>_import.md (per case: converted or not, and every digit or value rollcontact cannot pose with what it
-would need) and DIR/<deck>_import.json; prints the summary and the files. Default DIR: the deck's name in the current
+would need) and DIR/<deck>_import.json; prints the summary, one line per case or history, and the files. Default DIR: the deck's name in the current
 folder. Exit codes: 0 imported (also when some cases do not convert: the report says why), 2 a deck that cannot be
 read (the line and the field named) or a file that exists.
 """
@@ -30,8 +30,5 @@ def import_handler(args) -> int:
     from rollcontact.cases import api
     deck = Path(args.deck)
     out = Path(args.output) if args.output else Path(deck.name.removesuffix(".gz").removesuffix(".inp"))
-    result = api.import_contact(deck, out, overwrite=args.overwrite)
-    print(result.summary() + f" (converted: {result.status})")
-    for path in result.files:
-        print(path.resolve())
+    print(api.import_contact(deck, out, overwrite=args.overwrite).report())
     return 0

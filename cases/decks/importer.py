@@ -16,6 +16,7 @@ import shutil
 import tempfile
 
 from rollcontact.bem.errors import InputError, OutputExistsError
+from rollcontact.cases.arguments import arg, flag
 from rollcontact.cases.decks import problems as P
 from rollcontact.cases.decks.deck import Deck, read_deck
 from rollcontact.cases.decks.draft import Draft
@@ -58,8 +59,25 @@ class DeckImport:
         """The TOML text of a converted problem's scene."""
         return problem.draft.toml(_title(self.deck, problem))
 
-    def report(self) -> str:
+    def markdown(self) -> str:
+        """The import report (`<deck>_import.md`): per case converted or not, every refusal with its need."""
         return report_text(self)
+
+    def report(self) -> str:
+        """What `rollcontact import-contact` prints: the summary, one line per problem, the files written."""
+        lines = [self.summary() + f" (converted: {self.status})"]
+        for p in self.problems:
+            which = f"case {p.numbers[0]}" if len(p.numbers) == 1 else f"cases {p.numbers[0]}-{p.numbers[-1]}"
+            if p.kind == "skipped":
+                lines.append(f"  {which}: skipped ({p.reason})")
+            elif p.converted:
+                lines.append(f"  {which}: {p.name}.toml ({kind_text(p.kind)})")
+            else:
+                first = p.draft.unsupported[0].text() if p.draft.unsupported else "?"
+                more = len(p.draft.unsupported) - 1
+                lines.append(f"  {which}: not converted: {first}" + (f" (+{more} more)" if more > 0 else ""))
+        lines += [str(Path(f).resolve()) for f in self.files]
+        return "\n".join(lines)
 
     def manifest(self) -> dict:
         return {"deck": self.deck.name, "status": self.status, "notes": self.deck.notes,
@@ -244,13 +262,13 @@ def _write(result: DeckImport, out: Path, overwrite: bool):
         existing = [t for t in targets if t.exists()]
         if existing:
             raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: add "
-                                    "--overwrite (overwrite=True), or give another folder with -o")
+                                    f"{flag('overwrite')}, or give another folder with {arg('output')}")
     out.mkdir(parents=True, exist_ok=True)
     for target, problem in planned.items():
         target.write_text(result.scene_text(problem))
     for target, source in extra.items():
         if target.resolve() != source.resolve():
             shutil.copyfile(source, target)
-    (out / f"{result.deck.name}_import.md").write_text(result.report())
+    (out / f"{result.deck.name}_import.md").write_text(result.markdown())
     (out / f"{result.deck.name}_import.json").write_text(json.dumps(result.manifest(), indent=1) + "\n")
     result.files = targets

@@ -176,7 +176,7 @@ def test_import_writes_loadable_scenes_report_and_manifest_and_never_overwrites(
     assert "# CKSI = 0.0002 (line 10)" in text
     manifest = json.loads((out / "steady_spin_import.json").read_text())
     assert manifest["status"] == "yes" and manifest["problems"][0]["scene"] == "steady_spin_case1.toml"
-    assert "| case 1 | steady rolling (T = 3) | converted | `steady_spin_case1.toml` |" in result.report()
+    assert "| case 1 | steady rolling (T = 3) | converted | `steady_spin_case1.toml` |" in result.markdown()
     before = {p: p.stat().st_mtime_ns for p in out.iterdir()}
     with pytest.raises(OutputExistsError):
         _imported("steady_spin", out)
@@ -186,9 +186,13 @@ def test_import_writes_loadable_scenes_report_and_manifest_and_never_overwrites(
 def test_import_contact_command(tmp_path, capsys):
     out = tmp_path / "cli"
     assert main(["import-contact", str(DECKS / "transient.inp"), "-o", str(out)]) == 0
-    assert "transient: 5 of 5 computed cases converted into 1 scene (converted: yes)" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "transient: 5 of 5 computed cases converted into 1 scene (converted: yes)" in printed
+    assert "  cases 1-5: transient_cases1-5.toml (transient rolling (T = 2))" in printed
     assert (out / "transient_cases1-5.toml").is_file()
     assert main(["import-contact", str(DECKS / "transient.inp"), "-o", str(out)]) == 2
+    assert "exists; rollcontact does not replace a file unless asked: add --overwrite, or give another folder with -o" \
+        in capsys.readouterr().err
     bad = tmp_path / "bad.inp"
     bad.write_text(" 3 MODULE\n 200100\n 022020\n")
     assert main(["import-contact", str(bad), "-o", str(tmp_path / "b")]) == 2
@@ -222,7 +226,7 @@ def test_a_prepared_case_is_skipped_and_the_history_goes_on(tmp_path):
     assert skipped.kind == "skipped" and skipped.numbers == [4] and "R = 2" in skipped.reason
     assert history.converted and history.numbers == [1, 2, 3, 5] and history.steps == {1: 0, 2: 1, 3: 2, 5: 3}
     assert history.draft.sections["load"]["levels"] == [0.6, -0.4]
-    assert "| case 4 | skipped | skipped |  |" in result.report()
+    assert "| case 4 | skipped | skipped |  |" in result.markdown()
 
 
 def test_subsurface_blocks_become_the_runs_depths(tmp_path):
