@@ -100,7 +100,7 @@ def map_materials(case: Case, d: Draft):
 
 def map_material_model(case: Case, d: Draft):
     """M = 0: elastic. M = 1 viscoelastic, M = 2, 3, 5 the simplified theories (FASTSIM, FaStrip), M = 4 an
-    interfacial layer: refused until rollcontact has them."""
+    interfacial layer: refused, with what each would need."""
     m = case.effective.get("M", case.digits["M"])
     needs = {1: "viscoelastic materials (the standard linear solid: FG, TC)",
              2: "the simplified theory (FASTSIM) with one flexibility FLX", 3: "the simplified theory (FASTSIM)",
@@ -130,7 +130,7 @@ def map_friction(case: Case, d: Draft):
 
 
 def map_heat(case: Case, d: Draft):
-    """H = 1, 3 (surface temperatures) refused until rollcontact has them."""
+    """H = 1, 3 (surface temperatures): refused, with what they would need."""
     if case.digits["H"]:
         d.refuse(digit(case, "H"), case.digits["H"], "needs the surface temperatures of steady rolling "
                                                      "([thermal])", case.digit_lines["H"])
