@@ -99,15 +99,34 @@ def map_materials(case: Case, d: Draft):
 
 
 def map_material_model(case: Case, d: Draft):
-    """M = 0: elastic. M = 1 viscoelastic, M = 2, 3, 5 the simplified theories (FASTSIM, FaStrip), M = 4 an
-    interfacial layer: refused, with what each would need."""
+    """M = 0: elastic; M = 1: viscoelastic (`map_viscoelastic`). M = 2, 3, 5 (the simplified theories FASTSIM,
+    FaStrip) and M = 4 (an interfacial layer) are refused, with what each would need."""
     m = case.effective.get("M", case.digits["M"])
-    needs = {1: "viscoelastic materials (the standard linear solid: FG, TC)",
-             2: "the simplified theory (FASTSIM) with one flexibility FLX", 3: "the simplified theory (FASTSIM)",
+    needs = {2: "the simplified theory (FASTSIM) with one flexibility FLX", 3: "the simplified theory (FASTSIM)",
              4: "an interfacial layer with plasticity (GG3, LAYTHK, TAU_C0, K_TAU)", 5: "the FaStrip method",
              6: "the original FaStrip method", 7: "FaStrip with its full sliding correction"}
-    if m != 0:
+    if m == 1:
+        map_viscoelastic(case, d)
+    elif m != 0:
         d.refuse(digit(case, "M"), m, f"needs {needs[m]}", case.digit_lines["M"])
+
+
+def map_viscoelastic(case: Case, d: Draft):
+    """M = 1: each body a Standard Linear Solid (docs/viscoelastic.md): GG the glassy shear modulus, so E<i> = 2 GG
+    (1 + nu) glassy, FG = E_g/E_r - 1, so E<i>_relaxed = E<i> / (1 + FG), TC the creep relaxation time tau<i> (s).
+    FG = 0 is an elastic body; TC = 0 relaxes at once: an elastic body of the relaxed modulus."""
+    for body in (1, 2):
+        fg, tc = case.value(f"FG{body}"), case.value(f"TC{body}")
+        if fg is None or fg == 0:
+            continue
+        relaxed = youngs(case, body) / (1.0 + fg)
+        if tc == 0:
+            d.set("materials", f"E{body}", relaxed, f"relaxed at once (TC{body} = 0): 2 GG{body} (1 + POISS{body}) / "
+                                                    f"(1 + FG{body}); " + where(case, f"GG{body}", f"FG{body}"))
+            continue
+        d.set("materials", f"visco{body}", "sls", f"M = 1 (line {case.digit_lines['M']}): a standard linear solid")
+        d.set("materials", f"E{body}_relaxed", relaxed, f"E{body} / (1 + FG{body}); " + where(case, f"FG{body}"))
+        d.set("materials", f"tau{body}", tc, "creep relaxation time; " + where(case, f"TC{body}"))
 
 
 def map_friction(case: Case, d: Draft):
@@ -184,7 +203,8 @@ def map_geometry(case: Case, d: Draft) -> Geometry | None:
         return geo
     if not (geo.A > 0 and geo.B > 0):
         d.refuse("undeformed distance", f"A = {geo.A:g}, B = {geo.B:g} 1/mm",
-                 "needs a 2D contact (a zero curvature) or a concave body; rollcontact's ellipsoid has A, B > 0", line)
+                 "needs a line contact on a grid of one strip (2D), which rollcontact's scene keys do not take, or a "
+                 "concave body; rollcontact's ellipsoid has A, B > 0", line)
         return None
     if geo.A == geo.B:
         d.set("geometry", "R", 0.5 / geo.A, "1/(2 A) with A = B = " + _curvature_origin(case))

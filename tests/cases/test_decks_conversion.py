@@ -136,7 +136,7 @@ FRICTION = ("  0.30   0.30                      FSTAT, FKIN", "  0.2 0.1 100.0 0
     ([("   1   1   ", "   1   2   "), ("     B(1..6): h", "\n  -9 9 -9 9 0 0   PL(1..6)\n% B(1..6): h")],
      "IPLAN = 2 (line 16)", "planform"),
     ([("0.004  0.0  0.004", "0.004  0.001  0.004")], "B(2) = 0.001 (line 17)", "turned in the plane"),
-    ([("0.004  0.0  0.004", "0.004  0.0  0.0")], "undeformed distance", "2D"),
+    ([("0.004  0.0  0.004", "0.004  0.0  0.0")], "undeformed distance", "line contact"),
     ([("  5000.0", "  0.5")], "scene refused_case1", "rollcontact refuses it"),
 ])
 def test_what_rollcontact_cannot_pose_is_refused_with_its_value_line_and_need(tmp_path, changes, name, needs):
@@ -242,3 +242,18 @@ def test_subsurface_blocks_become_the_runs_depths(tmp_path):
     assert one.converted and one.draft.run_options == {"stresses": True, "depths": [0.0, 0.25, 0.5, 1.0, 2.0]}
     assert "# run: rollcontact run deep_case1.toml --stresses --depths 0,0.25,0.5,1,2" in result.scene_text(one)
     assert not result.problems[1].draft.run_options                   # S = 0 in case 2
+
+
+def test_viscoelastic_bodies_map_to_standard_linear_solids(tmp_path):
+    """M = 1: GG is the glassy shear modulus, FG = E_g/E_r - 1, TC the creep relaxation time (docs/viscoelastic.md);
+    a body with TC = 0 relaxes at once: elastic with its relaxed modulus."""
+    text = (BASE.replace("  022020      L-D-C-M-Z-E", "  022120      L-D-C-M-Z-E")
+            .replace("  180d   0.10  20000.", "  0.0    0.10  20000.")
+            .replace("82000.     POISS 1,2, GG 1,2", "82000.     POISS 1,2, GG 1,2\n  1.0  3.0  0.01  0.0   FG1, FG2, TC1, TC2"))
+    (tmp_path / "visco.inp").write_text(text)
+    (p,) = rollcontact.import_contact(tmp_path / "visco.inp").problems
+    m = p.draft.sections["materials"]
+    E = 2 * 82000 * 1.28
+    assert p.converted and m["visco1"] == "sls" and m["E1"] == E and m["tau1"] == 0.01
+    assert m["E1_relaxed"] == pytest.approx(E / 2) and m["E2"] == pytest.approx(E / 4) and "visco2" not in m
+    assert p.draft.sections["rolling"]["speed"] == 20000.0
