@@ -6,6 +6,7 @@
     same = rollcontact.read_run("out.h5")                   # a stored run as the same RunResult
     rollcontact.sweep(scene, {"load.ft": [0.2, 0.4], "motion.angle": [0, 90]}, "results/sweep")
     rollcontact.limit_search(scene, {"motion.w": [0.23]}, "results/limits")
+    rollcontact.creep_curve(scene, "xi", fidelity=["bem", "fastsim"], output="creep")   # a [rolling] scene
 
 Units: mm, N, MPa, degrees; dimensionless f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9). Errors are the
 CLI's: SceneError (a scene key out of range, naming the key and the range), InputError (a bad argument, naming
@@ -22,8 +23,8 @@ from rollcontact.cases.results.outputs import check_output
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.scene.scene import Scene, default_scene
 
-__all__ = ["load_scene", "run", "restart", "read_run", "stresses", "sweep", "limit_search", "RunResult", "Scene",
-           "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted"]
+__all__ = ["load_scene", "run", "restart", "read_run", "stresses", "sweep", "limit_search", "creep_curve", "RunResult",
+           "Scene", "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted"]
 
 
 def load_scene(path=None, overrides=None) -> Scene:
@@ -136,6 +137,55 @@ def limit_search(scene: Scene, vary, output, *, overrides=None, tol=0.01, jobs=N
     from rollcontact.cases.sweep.limit_search import search_limits
     return search_limits(_as_scene(scene), vary_specs(vary), output, overrides=Scene.assignments(overrides or []),
                          tol=tol, jobs=jobs, scheduler=scheduler, overwrite=overwrite, progress=_stream(progress))
+
+
+def creep_curve(scene: Scene, of: str = "xi", *, points: int = 20, max: float = 4.0, fidelity=None, output=None,
+                overwrite=False) -> dict:
+    """Creep-force curves of a [rolling] scene (as `rollcontact creep-curve`): `points` creepages of `of` ("xi",
+    "eta", "phi"; the others zero) geometrically from 0.02 to `max` times its saturation creepage, each model of
+    `fidelity` ("bem", "fastsim", "fastrip", or a list of them drawn side by side; default the scene's [solver]
+    fidelity when it is one of these, else "bem") on the same grid and pressure.
+
+    output: a folder for <scene>_creep_<of>.csv (the exact theory; <..>_<model>.csv for a fast model) and the figure
+    <scene>_creep_<of>.png/.pdf, or None for the tables alone. overwrite: replace existing files (else
+    OutputExistsError before any work). Returns {"tables": [CurveTable, ...], "paths": [...], "seconds": wall s}.
+    Units: mm, N, MPa; phi in 1/mm; forces on the rolling sphere (Kalker's convention).
+    """
+    import time
+    import numpy as np
+    from rollcontact.bem.errors import OutputExistsError
+    from rollcontact.cases.run.creep_curve import CURVE_FIDELITIES, compute_curves, write_csv
+    scene = _as_scene(scene)
+    if not scene.rolling_on:
+        raise InputError(f"creep-curve: scene {scene.name}: no [rolling] section (mode = \"steady\"); add one, or "
+                         "set rolling.mode = \"steady\"")
+    if not (int(points) == points and points >= 2 and 0 < max <= 100):
+        raise InputError(f"creep-curve: points = {points!r}, max = {max!r}: allowed ranges are points >= 2 (an integer) "
+                         "and 0 < max <= 100")
+    if fidelity is None:
+        fidelity = [scene.solver.fidelity if scene.solver.fidelity in CURVE_FIDELITIES else "bem"]
+    fidelity = [fidelity] if isinstance(fidelity, str) else list(dict.fromkeys(fidelity))
+    for f in fidelity:
+        if f not in CURVE_FIDELITIES:
+            raise InputError(f"creep-curve: fidelity = {f!r}: allowed values are {list(CURVE_FIDELITIES)}")
+    stem = f"{scene.name}_creep_{of}"
+    targets = []
+    if output is not None:
+        out = Path(output)
+        targets = [out / (f"{stem}.csv" if f == "bem" else f"{stem}_{f}.csv") for f in fidelity]
+        existing = [t for t in targets + [out / f"{stem}{e}" for e in (".png", ".pdf")] if t.exists()]
+        if existing and not overwrite:
+            raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: add "
+                                    "--overwrite (overwrite=True), or give another folder")
+    t0 = time.perf_counter()
+    tables = compute_curves(scene, of, np.geomspace(0.02, max, int(points)), fidelity)
+    seconds = time.perf_counter() - t0
+    paths = []
+    if output is not None:
+        from rollcontact.cases.plots.creep_figures import plot_curve
+        paths = [write_csv(t, path, overwrite=overwrite) for t, path in zip(tables, targets)]
+        paths += plot_curve(tables, Path(output), stem, overwrite=overwrite)
+    return {"tables": tables, "paths": paths, "seconds": seconds}
 
 
 def vary_specs(vary) -> list[str]:

@@ -10,13 +10,14 @@ The Python API (the `rollcontact` command is a thin layer over it; see README, "
     stresses(path, steps=None, depths=None)  add the subsurface stresses of stored steps to a run file
     sweep(scene, vary, output, ...)          a parameter sweep, as `rollcontact sweep`
     limit_search(scene, vary, output, ...)   the shakedown-limit search, as `rollcontact limit-search`
+    creep_curve(scene, of, fidelity=...)     creep-force curves of a [rolling] scene, as `rollcontact creep-curve`
 
 Subpackages, in the order data flows: `rollcontact.cases` (scenes, runs, results, sweeps, plots, CLI) ->
 `rollcontact.bem` (half-space: materials, grid, influence coefficients, FFT operator) -> `rollcontact.solver`
 (normal and tangential solvers, rolling, MDR model).
 """
-_API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "RunResult", "Scene",
-        "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted")
+_API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "creep_curve", "RunResult",
+        "Scene", "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted")
 __all__ = ["__version__", *_API]
 
 

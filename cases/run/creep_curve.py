@@ -6,6 +6,10 @@ traction for uncoupled materials; coupled ones are refused), each steady solutio
 (solver.creep.creep_curve). The creepages are `fractions` of the saturation creepage, at which Kalker's linear
 force with Hertz's semi-axes would reach mu Fn: xi* = mu Fn/(G c^2 C11), eta* = mu Fn/(G c^2 C22),
 phi* = mu Fn/(G c^3 C23) (1/mm). Kalker's convention: forces on the rolling sphere, opposing the creepage.
+
+`fidelities` draws the curve with several models on the same grid and pressure: 'bem' (the exact theory above),
+'fastsim' and 'fastrip' (solver.fastsim: the scene's traction bound and the flexibilities of cases.run.creep_fast,
+each point on its own, no warm start needed); one table per model, each point with the model's CPU time.
 Units: mm, N, MPa; creepages dimensionless, phi in 1/mm.
 """
 from __future__ import annotations
@@ -15,40 +19,58 @@ from dataclasses import dataclass
 import math
 import os
 from pathlib import Path
+import time
 
 import numpy as np
 
 from rollcontact.bem.errors import InputError, OutputExistsError
+from rollcontact.cases.run.creep_fast import SOLVERS, bound_pressure, contact_ellipse, fast_operator
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, kalker_coefficients,
                                       saturation_creepage, vermeulen_johnson)
+from rollcontact.solver.fastsim import kalker_flexibilities
 from rollcontact.solver.normal import NormalParams, solve_normal
 
 #: The creepage varied -> (index in (xi, eta, phi), force component, Kalker coefficient index)
 VARIED = {"xi": (0, 0, 0), "eta": (1, 1, 1), "phi": (2, 1, 2)}
 COLUMNS = ("creepage", "creepage_over_saturation", "F_x", "F_y", "M_z", "F_over_muFn", "linear_over_muFn",
-           "vermeulen_johnson", "stick_fraction", "sweeps")
+           "vermeulen_johnson", "stick_fraction", "sweeps", "cpu_time")
+#: The models a curve can be drawn with.
+CURVE_FIDELITIES = ("bem", "fastsim", "fastrip")
 
 
 @dataclass
 class CurveTable:
-    """The curve: `rows` (one dict per creepage, keys COLUMNS), what was varied, the saturation creepage."""
+    """The curve: `rows` (one dict per creepage, keys COLUMNS; cpu_time in s, sweeps 1 for a fast model's one
+    pass), what was varied, the saturation creepage, mu Fn (N) and the model ('bem', 'fastsim', 'fastrip')."""
     varied: str
     saturation: float
     rows: list
     mu_fn: float
+    fidelity: str = "bem"
 
 
-def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTable:
+def compute_curve(scene: Scene, varied: str = "xi", fractions=None, fidelity: str = "bem") -> CurveTable:
     """Steady states of `scene` at creepages `fractions` x the saturation creepage of `varied` (default: 20 values
-    geometrically from 0.02 to 4). F_over_muFn is -F/(mu Fn) of the component the creepage drives (positive)."""
+    geometrically from 0.02 to 4) on one model. F_over_muFn is -F/(mu Fn) of the component the creepage drives
+    (positive)."""
+    return compute_curves(scene, varied, fractions, (fidelity,))[0]
+
+
+def compute_curves(scene: Scene, varied: str = "xi", fractions=None, fidelities=("bem",)) -> list[CurveTable]:
+    """The curve of `compute_curve` on each model of `fidelities` (CURVE_FIDELITIES), on the same grid and
+    pressure."""
     if varied not in VARIED:
         raise InputError(f"creep-curve --of {varied!r}: allowed values are {list(VARIED)}")
+    fidelities = tuple(dict.fromkeys(fidelities))
+    for f in fidelities:
+        if f not in CURVE_FIDELITIES:
+            raise InputError(f"creep-curve --fidelity {f!r}: allowed values are {list(CURVE_FIDELITIES)}")
     fractions = np.geomspace(0.02, 4.0, 20) if fractions is None else np.asarray(fractions, dtype=float)
     grid, pair = creep_grid(scene), scene.material_pair
-    op = scene_operator(scene, grid)
+    op = scene_operator(scene, grid) if "bem" in fidelities else fast_operator(scene, grid)
     if op.coupled:
         raise InputError(f"creep-curve: coupled materials (Dundurs beta = {pair.beta:.3g}) need the normal problem "
                          "at every creepage; run the scene per creepage (rollcontact run), or set "
@@ -70,13 +92,43 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
                                      normal.force)
     creep = np.zeros((len(fractions), 3))
     creep[:, index] = fractions * saturation
+    tables = []
+    for fidelity in fidelities:
+        if fidelity == "bem":
+            force, moment, stick, sweeps, seconds = _exact_points(scene, grid, op, pair, normal, creep)
+        else:
+            force, moment, stick, sweeps, seconds = _fast_points(scene, grid, normal, creep, fidelity)
+        ratio = -force[:, component] / mu_fn
+        rows = [dict(zip(COLUMNS, (creep[k, index], fractions[k], force[k, 0], force[k, 1], moment[k], ratio[k],
+                                   fractions[k], float(vermeulen_johnson(fractions[k])), stick[k], int(sweeps[k]),
+                                   seconds[k]))) for k in range(len(fractions))]
+        tables.append(CurveTable(varied, saturation, rows, mu_fn, fidelity))
+    return tables
+
+
+def _exact_points(scene, grid, op, pair, normal, creep):
+    """The exact steady solver along the creepages, warm-started (solver.creep.creep_curve); per-point CPU time."""
+    params = SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100))
     curve = creep_curve(SteadyRolling(grid, pair, coupled=False, operator=op), normal.pressure, scene.load.mu, creep,
-                        params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)))
-    ratio = -curve.force[:, component] / mu_fn
-    rows = [dict(zip(COLUMNS, (creep[k, index], fractions[k], curve.force[k, 0], curve.force[k, 1],
-                               curve.moment[k], ratio[k], fractions[k], float(vermeulen_johnson(fractions[k])),
-                               curve.stick_fraction[k], int(curve.sweeps[k])))) for k in range(len(fractions))]
-    return CurveTable(varied, saturation, rows, mu_fn)
+                        params=params)
+    return curve.force, curve.moment, curve.stick_fraction, curve.sweeps, curve.cpu_time
+
+
+def _fast_points(scene, grid, normal, creep, fidelity):
+    """A fast model at each creepage on the grid and pressure of the exact curve (cases.run.creep_fast)."""
+    pressure, edges = bound_pressure(scene, grid, normal.pressure)
+    a, b = contact_ellipse(scene, grid, normal.pressure)
+    pair = scene.material_pair
+    flex = kalker_flexibilities(a, b, pair.G, pair.nu)
+    solve = SOLVERS[fidelity]
+    force, moment = np.zeros((len(creep), 2)), np.zeros(len(creep))
+    stick, seconds = np.zeros(len(creep)), np.zeros(len(creep))
+    for k, row in enumerate(creep):
+        c0 = time.process_time()
+        res = solve(grid, pressure, scene.load.mu, *row, flexibilities=flex, edges=edges)
+        seconds[k] = time.process_time() - c0
+        force[k], moment[k], stick[k] = res.force, res.moment, res.stick.sum() / res.contact.sum()
+    return force, moment, stick, np.ones(len(creep), dtype=np.int64), seconds
 
 
 def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
@@ -89,8 +141,9 @@ def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     unit = "1/mm" if table.varied == "phi" else "-"
     with open(tmp, "w", newline="") as fh:
-        fh.write(f"# creep-force curve over {table.varied} ({unit}); saturation creepage {table.saturation:.6g} "
-                 f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
+        fh.write(f"# creep-force curve over {table.varied} ({unit}) by fidelity = '{table.fidelity}'; saturation "
+                 f"creepage {table.saturation:.6g} {unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on "
+                 f"the rolling sphere (Kalker); cpu_time (s) per point\n")
         writer = csv.DictWriter(fh, fieldnames=COLUMNS)
         writer.writeheader()
         for row in table.rows:

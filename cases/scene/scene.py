@@ -14,7 +14,8 @@ Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contr
                 (mm) and initial ("rest", "cattaneo") of a transient; speed (mm/s): rolling on with creepage and
                 spin, in place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [grid]      dx, dy, margin
-    [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
+    [solver]    tol, max_iter, fidelity ("bem", "mdr", "fastsim", "fastrip" or "auto"), accuracy (with "auto"),
+                traction_bound (of "fastsim", "fastrip"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
 
 A key left out takes its default (the field specs of `cases.scene.keys`): the seed paper's materials, Fn, mu
@@ -40,7 +41,8 @@ from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.geometry import (
     SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
-    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, check_key)
+    FAST_FIDELITIES, SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR,
+    check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
@@ -96,6 +98,7 @@ class Scene(SceneLimits):
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
         scene._check_rolling(data)
+        scene._check_fidelity()
         scene._check_consistency()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
@@ -251,9 +254,59 @@ class Scene(SceneLimits):
             if distance / ro.step > MAX_STEPS:
                 raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
                                  f"{MAX_STEPS} steps; use a larger step or a shorter distance")
-        if self.solver.fidelity != "bem":
-            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
-                             "boundary elements; allowed value is 'bem'")
+        self._check_fast_rolling()
+
+    def _check_fast_rolling(self):
+        """The models of a [rolling] scene: 'bem', the fast models of solver.fastsim (steady creepages; FaStrip steady
+        only), 'auto'; and the fast models' traction bound."""
+        so, ro = self.solver, self.rolling
+        if so.fidelity == "mdr":
+            raise SceneError("[solver] fidelity = 'mdr' with [rolling]: the 1-D MDR model has no creepage; allowed "
+                             "values are ['bem', 'fastsim', 'fastrip', 'auto']")
+        if so.fidelity in FAST_FIDELITIES:
+            if self.prescribed_forces is not None:
+                raise SceneError(f"[rolling] Fx, Fy with [solver] fidelity = {so.fidelity!r}: the fast models take "
+                                 "the creepages xi, eta; give those, or use fidelity = 'bem'")
+            if so.coupling == "on":
+                raise SceneError(f"[solver] coupling = 'on' with fidelity = {so.fidelity!r}: the fast models have no "
+                                 "normal-tangential coupling; use fidelity = 'bem', or coupling = 'auto' / 'off'")
+            if so.fidelity == "fastrip" and ro.mode == "transient":
+                raise SceneError("[solver] fidelity = 'fastrip' with [rolling] mode = 'transient': FaStrip (strip "
+                                 "theory) is a steady-state theory; use fidelity = 'fastsim' or 'bem', or mode = "
+                                 "'steady'")
+        if so.traction_bound in (None, "scene"):
+            return
+        if so.fidelity not in FAST_FIDELITIES:
+            raise SceneError(f"[solver] traction_bound = {so.traction_bound!r} with fidelity = {so.fidelity!r}: the "
+                             "bound is chosen for the fast models only; set fidelity = 'fastsim' or 'fastrip', or "
+                             "remove solver.traction_bound")
+        if so.fidelity == "fastrip" and so.traction_bound == "parabolic":
+            raise SceneError("[solver] traction_bound = 'parabolic' with fidelity = 'fastrip': the parabolic bound is "
+                             "FASTSIM's; FaStrip's strips carry the semi-ellipsoid ('ellipsoid' or 'scene')")
+        (sa, sb), turned = self.semi_axes, ro.direction % 180.0
+        if self.shape not in ("sphere", "ellipsoid") or (sa != sb and turned not in (0.0, 90.0)):
+            raise SceneError(f"[solver] traction_bound = {self.solver.traction_bound!r}: Hertz's contact ellipse is "
+                             "known for a sphere or an ellipsoid rolling along one of its axes ([rolling] direction "
+                             "0 or 90 deg); use traction_bound = 'scene' (the pressure of the normal problem)")
+
+    def _check_fidelity(self):
+        """The fast models are for [rolling] scenes; solver.accuracy goes with fidelity = 'auto'."""
+        so = self.solver
+        if so.fidelity in FAST_FIDELITIES and not self.rolling_on:
+            raise SceneError(f"[solver] fidelity = {so.fidelity!r}: a model of rolling with creepage, for scenes with a "
+                             "[rolling] section; allowed values here are ['bem', 'mdr', 'auto']")
+        if so.traction_bound is not None and not self.rolling_on:
+            raise SceneError(f"[solver] traction_bound = {so.traction_bound!r}: applies to the fast models of [rolling] "
+                             "scenes only; remove solver.traction_bound")
+
+    @property
+    def traction_bound(self) -> str:
+        """The fast models' traction bound ([solver] traction_bound; 'scene' when left out)."""
+        return self.solver.traction_bound or "scene"
+        if so.accuracy is not None and so.fidelity != "auto":
+            raise SceneError(f"[solver] accuracy = {so.accuracy!r} with fidelity = {so.fidelity!r}: the accuracy is "
+                             "what fidelity = 'auto' chooses a model for; set fidelity = 'auto', or remove "
+                             "solver.accuracy")
 
     def _check_consistency(self):
         ld, mo = self.load, self.motion

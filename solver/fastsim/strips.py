@@ -32,11 +32,12 @@ def strip_edges(grid: Grid, pressure) -> tuple[np.ndarray, np.ndarray]:
     return lead, trail
 
 
-def ellipse_edges(grid: Grid, a: float, b: float, contact) -> tuple[np.ndarray, np.ndarray]:
-    """The exact edges +-a sqrt(1 - y^2/b^2) of the ellipse centred at the origin, at the cells of `contact`."""
+def ellipse_edges(grid: Grid, a: float, b: float, contact, centre: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """The exact edges centre +- a sqrt(1 - y^2/b^2) (mm) of the ellipse centred at (centre, 0), at the cells of
+    `contact` (nan elsewhere): (leading, trailing)."""
     half = a * np.sqrt(np.clip(1.0 - (grid.y / b) ** 2, 0.0, None))[:, None] * np.ones(grid.nx)
-    lead = np.where(contact, half, np.nan)
-    return lead, -lead
+    half = np.where(contact, half, np.nan)
+    return centre + half, centre - half
 
 
 def equivalent_ellipse(grid: Grid, pressure) -> tuple[float, float]:
@@ -53,15 +54,16 @@ def equivalent_ellipse(grid: Grid, pressure) -> tuple[float, float]:
     return radius * math.sqrt(length / width), radius * math.sqrt(width / length)
 
 
-def ellipse_pressure(grid: Grid, a: float, b: float, normal_force: float, bound: str = "ellipsoid") -> np.ndarray:
-    """Cell-centre pressure (MPa) of the ellipse (a, b) (mm) centred at the origin carrying normal_force (N):
+def ellipse_pressure(grid: Grid, a: float, b: float, normal_force: float, bound: str = "ellipsoid",
+                     centre: float = 0.0) -> np.ndarray:
+    """Cell-centre pressure (MPa) of the ellipse (a, b) (mm) centred at (centre, 0) carrying normal_force (N):
     Hertz's semi-ellipsoid or Kalker's parabolic bound (`BOUNDS`), zero outside."""
     if bound not in BOUNDS:
         raise InputError(f"bound = {bound!r}: allowed values are {list(BOUNDS)}")
     if not (a > 0 and b > 0 and normal_force > 0 and math.isfinite(a * b * normal_force)):
         raise InputError(f"a = {a!r}, b = {b!r} mm, Fn = {normal_force!r} N: must be positive and finite")
     X, Y = grid.mesh()
-    rest = np.clip(1.0 - (X / a) ** 2 - (Y / b) ** 2, 0.0, None)
+    rest = np.clip(1.0 - ((X - centre) / a) ** 2 - (Y / b) ** 2, 0.0, None)
     if bound == "ellipsoid":
         return 3.0 * normal_force / (2.0 * math.pi * a * b) * np.sqrt(rest)
     return 2.0 * normal_force / (math.pi * a * b) * rest
