@@ -42,8 +42,9 @@ from rollcontact.solver.fastsim.error_map import creep_coordinates  # noqa: E402
 
 MU = 0.3
 MODELS = {"fastsim": solve_fastsim, "fastrip": solve_fastrip}
-FULL = dict(nu=(0.0, 0.28, 0.5), ratio=(0.2, 0.5, 1.0, 2.0, 5.0), theta=(0, 30, 60, 90, 120, 150, 180),
-            alpha=(0, 45, 90), t=(0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0, 10.0, 20.0), held_out=60)
+FULL = dict(nu=(0.0, 0.28, 0.5), ratio=(0.2, 0.35, 0.5, 1.0, 2.0, 3.0, 5.0),
+            theta=(0, 15, 30, 45, 60, 75, 90, 105, 120, 135, 150, 165, 180), alpha=(0, 22.5, 45, 67.5, 90),
+            t=(0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0, 10.0, 20.0), held_out=100)
 QUICK = dict(nu=(0.28,), ratio=(0.5, 2.0), theta=(0, 90, 180), alpha=(0, 90), t=(0.1, 0.5, 1.0, 3.0), held_out=4)
 PARAMS = SteadyParams(tol=1e-7, max_sweeps=5000)
 
@@ -118,7 +119,7 @@ def build_map(config, elements, log=print):
     return errors, exact_force, {m: statistics.median(v) for m, v in seconds.items() if v}
 
 
-def held_out(config, elements, count, seed=20261127, log=print):
+def held_out(config, elements, count, seed=20261128, log=print):
     """`count` scenes at random inside the map's ranges (nu uniform, a/b log-uniform, direction uniform on the
     reduced sphere, t log-uniform over the map's t range), each solved cold: their coordinates and errors."""
     rng = np.random.default_rng(seed)

@@ -47,7 +47,13 @@ SUMMARY_UNITS = {
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
     "speed": "mm/s", "step_time": "s",
+    "fidelity_used": "-", "accuracy": "-", "predicted_error": "-", "fidelity_reason": "-", "traction_bound": "-",
+    "flexibility": "mm/MPa", "ellipse_a": "mm", "ellipse_b": "mm", "model_cpu_time": "s",
 }
+#: fidelity: the model that ran, fidelity_used the same (docs/creep_fidelity.md); with [solver] fidelity = "auto" also
+#: accuracy (requested), predicted_error (of the chosen model, by the measured map; 0 for the 3-D reference) and
+#: fidelity_reason. A fast model's run ([rolling], fastsim / fastrip): traction_bound, flexibility (Kalker's weighted
+#: L), ellipse_a, ellipse_b (the ellipse of its flexibilities) and model_cpu_time (the tangential model alone).
 #: dissipation_per_period: the frictional work of the last complete period (sum of /history/dissipation over it).
 #: speed: the scene's rolling speed (motion.speed or rolling.speed), step_time: the duration of every step (its
 #: displacement over the speed; Scene.step_time); both only in a scene with a speed.

@@ -70,14 +70,16 @@ def choose_fidelity(scene: Scene) -> FidelityChoice:
 
 
 def _rolling_choice(scene: Scene, accuracy: float):
+    from rollcontact.bem.operator import COUPLING_THRESHOLD
     from rollcontact.cases.run.rolling_frame import rolling_semi_axes
     from rollcontact.solver.fastsim.error_map import load_error_map, normalised_creepages
     pair = scene.material_pair
     if scene.prescribed_forces is not None:
         return "bem", 0.0, "prescribed forces Fx, Fy: the map is over creepages (the fast models take creepages)"
-    if pair.K != 0.0 and scene.solver.coupling != "off":
-        return "bem", 0.0, (f"coupled materials (Kalker's K = {pair.K:.3g}): the fast models have no normal-tangential "
-                            "coupling and the map none either")
+    coupling = scene.solver.coupling
+    if coupling == "on" or (coupling == "auto" and abs(pair.beta) > COUPLING_THRESHOLD):
+        return "bem", 0.0, (f"coupled materials (Dundurs beta = {pair.beta:.3g}): the fast models have no "
+                            "normal-tangential coupling and the map none either")
     axes = rolling_semi_axes(scene)
     if scene.shape not in ("sphere", "ellipsoid") or axes is None:
         return "bem", 0.0, (f"shape {scene.shape!r} rolling at {scene.rolling.direction:g} deg: the map holds Hertzian "

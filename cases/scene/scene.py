@@ -298,15 +298,15 @@ class Scene(SceneLimits):
         if so.traction_bound is not None and not self.rolling_on:
             raise SceneError(f"[solver] traction_bound = {so.traction_bound!r}: applies to the fast models of [rolling] "
                              "scenes only; remove solver.traction_bound")
+        if so.accuracy is not None and so.fidelity != "auto":
+            raise SceneError(f"[solver] accuracy = {so.accuracy!r} with fidelity = {so.fidelity!r}: the accuracy is "
+                             "what fidelity = 'auto' chooses a model for; set fidelity = 'auto', or remove "
+                             "solver.accuracy")
 
     @property
     def traction_bound(self) -> str:
         """The fast models' traction bound ([solver] traction_bound; 'scene' when left out)."""
         return self.solver.traction_bound or "scene"
-        if so.accuracy is not None and so.fidelity != "auto":
-            raise SceneError(f"[solver] accuracy = {so.accuracy!r} with fidelity = {so.fidelity!r}: the accuracy is "
-                             "what fidelity = 'auto' chooses a model for; set fidelity = 'auto', or remove "
-                             "solver.accuracy")
 
     def _check_consistency(self):
         ld, mo = self.load, self.motion

@@ -1,0 +1,264 @@
+"""The tables and the chart of docs/creep_fidelity.md: the force errors of FASTSIM and FaStrip against the exact
+steady theory (from the map `auto` uses), accuracy against time per case beside the MDR-versus-3-D chart of the
+shakedown scenes, and CONTACT's `fastsim` example posed.
+
+    .venv/bin/python benchmarks/creep_fidelity.py [-o DIR] [--quick]
+        # DIR default results/creep_fidelity; `-o docs/figures` refreshes the page's figure (and its JSON)
+
+Reads solver/fastsim/error_map.json and solver/mdr/error_map.json (benchmarks/creep_error_map.py and
+benchmarks/mdr_error_map.py measure them) and benchmarks/results/default_resolution.json (the 3-D solver's u_sd at
+a/dx = 6 and 12 against a/24); measures, at nu = 0.28: the exact solver's own discretisation error (21 and 41
+elements across against 81) and CPU time per case, on the table's curves (pure xi, eta, phi; eta with spin adding
+to it and against it; xi with eta) at a/b = 0.2 ... 5; and CONTACT's example (a = 8, b = 4 mm, Fn = 82 kN,
+G = 82 GPa, nu = 0.28, mu = 0.3, eta = -6.25e-4, phi = 6.25e-4 1/mm) on its 44 x 44 and 220 x 220 grids.
+Writes DIR/creep_fidelity.png and DIR/creep_fidelity.json and prints the page's tables.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import math
+import os
+from pathlib import Path
+import statistics
+import sys
+import time
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(ROOT))
+
+from rollcontact.bem import MaterialPair  # noqa: E402
+from rollcontact.bem.grid import Grid  # noqa: E402
+from rollcontact.bem.operator import HalfSpaceOperator  # noqa: E402
+from rollcontact.solver.creep import (SteadyParams, SteadyRolling, ellipse_grid, hertz_pressure,  # noqa: E402
+                                      kalker_coefficients, solve_steady)
+from rollcontact.solver.fastsim import kalker_flexibilities, solve_fastrip, solve_fastsim  # noqa: E402
+from rollcontact.solver.normal import NormalParams, solve_normal  # noqa: E402
+
+#: The table's curves: name -> (theta, alpha) of the map (solver.fastsim.error_map).
+CURVES = {"xi": (90, 0), "eta": (90, 90), "phi": (0, 0), "eta+phi": (60, 90), "eta-phi": (120, 90),
+          "xi+eta": (90, 45)}
+NU = 0.28
+MU = 0.3
+
+
+def load_json(path):
+    return json.loads(Path(path).read_text())
+
+
+def error_table(creep_map):
+    """Per (a/b, curve): the largest and the median error over the map's t of each model, at nu = 0.28."""
+    ax = creep_map["axes"]
+    i_nu = ax["nu"].index(NU)
+    rows = []
+    for j, ratio in enumerate(ax["ratio"]):
+        for name, (theta, alpha) in CURVES.items():
+            k, m = ax["theta"].index(theta), ax["alpha"].index(alpha)
+            row = dict(ratio=ratio, curve=name)
+            for model in creep_map["models"]:
+                e = np.array([np.nan if v is None else v for v in creep_map["errors"][model][i_nu][j][k][m]])
+                row[f"{model}_max"], row[f"{model}_median"] = float(np.nanmax(e)), float(np.nanmedian(e))
+                row[f"{model}_errors"] = e.tolist()
+            row["fastrip_closer"] = row["fastrip_max"] < row["fastsim_max"]
+            rows.append(row)
+    return rows
+
+
+def exact_discretisation(creep_map, quick):
+    """The exact solver's force at 21 and 41 elements across against 81, and its cold CPU time per case, along the
+    table's curves (a subset of the map's t)."""
+    ax = creep_map["axes"]
+    ratios = (1.0,) if quick else tuple(ax["ratio"])
+    ts = (0.2, 1.0) if quick else (0.1, 0.35, 1.0, 3.0)
+    levels = (21, 41) if quick else (21, 41, 81)
+    pair = MaterialPair.from_moduli(2 * (1 + NU), NU, 2 * (1 + NU), NU)
+    out = []
+    for ratio in ratios:
+        a, b = math.sqrt(ratio), 1 / math.sqrt(ratio)
+        c11, c22, c23 = kalker_coefficients(ratio, NU)
+        cases = {}
+        for n in levels:
+            grid = ellipse_grid(a, b, n)
+            p = hertz_pressure(grid, a, b, 1.0)
+            problem = SteadyRolling(grid, pair)
+            unit = np.array([1 / c11, 1 / c22, 1 / c23]) * MU * p.sum() * grid.cell_area
+            for name, (theta, alpha) in CURVES.items():
+                th, al = math.radians(theta), math.radians(alpha)
+                d = np.array([math.sin(th) * math.cos(al), math.sin(th) * math.sin(al), math.cos(th)])
+                for t in ts:
+                    c0 = time.process_time()
+                    res = solve_steady(problem, p, MU, *(t * d * unit), params=SteadyParams(tol=1e-7))
+                    cases.setdefault((name, t), {})[n] = (np.array(res.force), time.process_time() - c0)
+        ref = levels[-1]
+        for (name, t), by_n in cases.items():
+            F = by_n[ref][0]
+            for n in levels[:-1]:
+                out.append(dict(ratio=ratio, curve=name, t=t, elements=n, seconds=by_n[n][1],
+                                error=float(np.hypot(*(by_n[n][0] - F)) / np.hypot(*F))))
+    return out
+
+
+def contact_example(quick):
+    """CONTACT's examples/fastsim.inp posed (module docstring): the exact solver on its grid (cell centres on half
+    cells: the creepages are moved to the contact centre), FASTSIM (one weighted flexibility and three flexibilities;
+    elliptical and parabolic bounds) and FaStrip; Fy (N) and Mz (N mm) beside CONTACT's reference output."""
+    a, b, fn, G, nu, mu = 8.0, 4.0, 82000.0, 82000.0, 0.28, 0.3
+    eta, phi = -0.000625, 0.000625
+    contact = {"exact": (-1.494e4, -4.821e4), "fastsim_parabolic_3flex": (-1.505e4, -3.900e4),
+               "fastsim_ellipsoid_3flex": (-1.480e4, -4.829e4), "fastrip": (-1.583e4, -4.816e4),
+               "fine_fastsim_parabolic_3flex": (-1.564e4, -3.798e4), "fine_fastsim_ellipsoid_3flex": (-1.465e4, -4.530e4),
+               "fine_fastrip": (-1.585e4, -4.757e4)}
+    out = {"contact": contact}
+    flex = kalker_flexibilities(a, b, G, nu)
+    for tag, m in (("", 44), ("fine_", 220)):
+        dx, dy = 1.1 * 2 * a / m, 1.1 * 2 * b / m
+        grid = Grid(m + 2, m, dx, dy, -(m // 2) - 1, -(m // 2))      # one free column ahead and behind
+        xc, yc = -0.5 * dx, -0.5 * dy            # the contact centre: CONTACT's cell centres lie on half cells
+        creep = (phi * yc, eta - phi * xc, phi)  # the rigid slip about the contact centre, on grid coordinates
+        for bound in ("ellipsoid", "parabolic"):
+            p = _ellipse_off(grid, a, b, fn, bound, xc, yc)
+            edges = _edges_off(grid, a, b, p > 0, xc, yc)
+            for flexibility in ("weighted", "three"):
+                r = solve_fastsim(grid, p, mu, *creep, flexibilities=flex, edges=edges, flexibility=flexibility)
+                out[f"{tag}fastsim_{bound}_{flexibility}"] = _about_centre(r, xc, yc)
+            if bound == "ellipsoid":
+                r = solve_fastrip(grid, p, mu, *creep, flexibilities=flex, edges=edges)
+                out[f"{tag}fastrip"] = _about_centre(r, xc, yc)
+        if tag == "":
+            X, Y = grid.mesh()
+            pair = MaterialPair.from_moduli(2 * G * (1 + nu), nu, 2 * G * (1 + nu), nu)
+            op = HalfSpaceOperator(grid, pair, coupling=False)
+            gap = 0.8464e-3 * (X - xc) ** 2 + 0.2406e-2 * (Y - yc) ** 2        # CONTACT's curvatures A1, B1
+            normal = solve_normal(op, gap, force=fn, params=NormalParams(tol=1e-10))
+            res = solve_steady(SteadyRolling(grid, pair, operator=op), normal.pressure, mu, *creep,
+                               params=SteadyParams(tol=1e-8))
+            out["exact"] = _about_centre(res, xc, yc)
+            out["exact_pmax"] = float(normal.pressure.max())
+    del quick
+    return out
+
+
+def _ellipse_off(grid, a, b, fn, bound, xc, yc):
+    X, Y = grid.mesh()
+    rest = np.clip(1 - ((X - xc) / a) ** 2 - ((Y - yc) / b) ** 2, 0, None)
+    if bound == "ellipsoid":
+        return 3 * fn / (2 * math.pi * a * b) * np.sqrt(rest)
+    return 2 * fn / (math.pi * a * b) * rest
+
+
+def _edges_off(grid, a, b, contact, xc, yc):
+    half = a * np.sqrt(np.clip(1 - ((grid.y - yc) / b) ** 2, 0, None))[:, None] * np.ones(grid.nx)
+    half = np.where(contact, half, np.nan)
+    return xc + half, xc - half
+
+
+def _about_centre(res, xc, yc):
+    """(Fy, Mz about the contact centre) of a result whose moment is about the grid origin."""
+    fx, fy = res.force
+    return (float(fy), float(res.moment - (xc * fy - yc * fx)))
+
+
+def chart(table, exact_rows, creep_map, mdr_map, resolution, path):
+    """Accuracy against CPU time per case: left the rolling scenes (FASTSIM, FaStrip against the exact theory on
+    the same grid, the exact theory's own error at 21 and 41 elements across against 81), right the shakedown scenes
+    (the MDR model against the 3-D solver, the 3-D solver at a/dx = 6 and 12 against 24)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11.0, 4.4), layout="constrained")
+    floor = 1e-4
+    sec = creep_map["seconds_per_case"]
+    styles = {"fastsim": ("s", "C3", "FASTSIM"), "fastrip": ("^", "C4", "FaStrip")}
+    rng = np.random.default_rng(1)
+    for model, (marker, colour, label) in styles.items():
+        errs = np.concatenate([np.array(r[f"{model}_errors"], dtype=float) for r in table])
+        errs = errs[np.isfinite(errs)]
+        x = sec[model] * np.exp(rng.normal(0, 0.08, errs.size))
+        left.scatter(x, np.maximum(errs, floor), s=6, marker=marker, color=colour, alpha=0.35,
+                     label=f"{label} (median {100 * np.median(errs):.1f} %, {1e3 * sec[model]:.2g} ms)")
+    for n, colour in ((21, "C9"), (41, "C0")):
+        rows = [r for r in exact_rows if r["elements"] == n]
+        if rows:
+            left.scatter([r["seconds"] for r in rows], [max(r["error"], floor) for r in rows], s=10, color=colour,
+                         marker="o", alpha=0.6, label=f"exact theory, {n} across vs 81 (median "
+                         f"{100 * statistics.median(r['error'] for r in rows):.1f} %)")
+    left.set_xscale("log"), left.set_yscale("log")
+    left.set_xlabel("CPU time per case (s)")
+    left.set_ylabel("|F - F_ref| / |F_ref|")
+    left.set_title("rolling with creepage: fast models vs exact theory\n(a/b 0.2-5, nu 0.28; the map auto uses)",
+                   fontsize=10)
+    left.legend(fontsize=7, loc="lower left")
+    mdr_errors = [e for plane in mdr_map["errors"] for row in plane for e in row if e is not None]
+    t_mdr, t_3d = mdr_map["seconds_per_run"]["mdr"], mdr_map["seconds_per_run"]["bem"]
+    right.scatter(t_mdr * np.exp(rng.normal(0, 0.08, len(mdr_errors))), np.maximum(mdr_errors, floor), s=12,
+                  marker="D", color="C2", alpha=0.6, label=f"MDR model vs 3-D (median "
+                  f"{100 * np.median(mdr_errors):.1f} %, {1e3 * t_mdr:.2g} ms/run)")
+    for setting, colour in zip(resolution["settings"], ("C9", "C0")):
+        per_run = setting["total_wall_s"] / setting["runs"]
+        devs = [abs(r["dev"]) for r in setting["rows"] if r.get("dev") is not None]
+        right.scatter(per_run * np.exp(rng.normal(0, 0.05, len(devs))), np.maximum(devs, floor), s=12, color=colour,
+                      label=f"3-D, a/dx = {setting['a_over_dx']:g} vs 24 (max {100 * max(devs):.2f} %)")
+    right.scatter([t_3d], [floor], marker="*", s=80, color="k", label=f"3-D, a/dx = 24 (reference, {t_3d:.2g} s/run)")
+    right.set_xscale("log"), right.set_yscale("log")
+    right.set_xlabel("CPU time per run (s)")
+    right.set_ylabel("|u_sd - u_sd,ref| / u_sd,ref")
+    right.set_title("shakedown: MDR vs 3-D (seed's scene, w 0.1-0.4, f_t 0.1-0.9)", fontsize=10)
+    right.legend(fontsize=7, loc="lower right")
+    for ax in (left, right):
+        ax.axhline(0.02, color="0.6", lw=0.8, ls=":")
+        ax.set_ylim(floor * 0.8, 10.0)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def print_tables(table, example):
+    print("\n| a/b | curve | FASTSIM max | FASTSIM median | FaStrip max | FaStrip median |")
+    print("|---|---|---|---|---|---|")
+    for r in table:
+        print(f"| {r['ratio']:g} | {r['curve']} | {100 * r['fastsim_max']:.1f} % | {100 * r['fastsim_median']:.1f} % "
+              f"| {100 * r['fastrip_max']:.1f} % | {100 * r['fastrip_median']:.1f} % |")
+    print("\n| CONTACT fastsim example | Fy (N) | Mz (N mm) | CONTACT Fy | CONTACT Mz |")
+    print("|---|---|---|---|---|")
+    names = dict(exact="exact", fastsim_parabolic_three="fastsim_parabolic_3flex",
+                 fastsim_ellipsoid_three="fastsim_ellipsoid_3flex", fastrip="fastrip",
+                 fine_fastsim_parabolic_three="fine_fastsim_parabolic_3flex",
+                 fine_fastsim_ellipsoid_three="fine_fastsim_ellipsoid_3flex", fine_fastrip="fine_fastrip")
+    for key, value in example.items():
+        if key in ("contact", "exact_pmax"):
+            continue
+        ref = example["contact"].get(names.get(key, ""), ("", ""))
+        print(f"| {key} | {value[0]:.4g} | {value[1]:.4g} | {ref[0]} | {ref[1]} |")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("-o", "--output", default="results/creep_fidelity", help="folder for the PNG and the JSON")
+    parser.add_argument("--quick", action="store_true", help="a/b = 1 only for the exact solver's error (seconds)")
+    args = parser.parse_args(argv)
+    start, load = time.perf_counter(), os.getloadavg()
+    creep_map = load_json(ROOT / "solver" / "fastsim" / "error_map.json")
+    mdr_map = load_json(ROOT / "solver" / "mdr" / "error_map.json")
+    resolution = load_json(HERE / "results" / "default_resolution.json")
+    table = error_table(creep_map)
+    exact_rows = exact_discretisation(creep_map, args.quick)
+    example = contact_example(args.quick)
+    out = Path(args.output)
+    chart(table, exact_rows, creep_map, mdr_map, resolution, out / "creep_fidelity.png")
+    data = dict(date=datetime.date.today().isoformat(), loadavg_before=load, loadavg_after=os.getloadavg(),
+                wall_time_s=time.perf_counter() - start, quick=args.quick,
+                table=[{k: v for k, v in r.items() if not k.endswith("_errors")} for r in table],
+                exact_discretisation=exact_rows, contact_example=example,
+                seconds_per_case=creep_map["seconds_per_case"], mdr_seconds_per_run=mdr_map["seconds_per_run"])
+    (out / "creep_fidelity.json").write_text(json.dumps(data, indent=1) + "\n")
+    print_tables(table, example)
+    print((out / "creep_fidelity.png").resolve())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,98 @@
+"""`solver.fidelity = "auto"` against held-out measurements (docs/creep_fidelity.md): scenes that were not used to
+build the error maps, each measured on every model, on which the map's prediction must never let `auto` choose a
+model whose measured error exceeds the request.
+
+The measurements are data of the program's own runs (benchmarks/creep_error_map.py and benchmarks/mdr_error_map.py
+write them with the maps: tests/solver/data/fastsim_held_out.json, tests/cases/data/mdr_held_out.json), so these
+tests check the choice, not the physics; the physics of each model is checked in tests/solver/test_fastsim.py and
+by the MDR's closed forms. One live check solves held-out scenes end to end (scene -> choice -> run -> the exact
+run of the same scene).
+"""
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rollcontact.cases.run.fidelity import FAST_BY_COST, choose_fidelity
+from rollcontact.cases.run.scene_run import run_scene
+from rollcontact.cases.scene.scene import Scene
+from rollcontact.solver.fastsim.error_map import load_error_map
+from rollcontact.solver.mdr.error_map import load_mdr_map
+
+HERE = Path(__file__).resolve().parent
+REQUESTS = (0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3)
+
+
+def _rows(path):
+    return json.loads(path.read_text())["rows"]
+
+
+@pytest.mark.parametrize("accuracy", REQUESTS)
+def test_auto_never_exceeds_the_request_on_held_out_rolling_scenes(accuracy):
+    """For every held-out scene (a/b, nu, creepages drawn at random inside the map, off its nodes) the model `auto`
+    takes (the cheapest fast model whose predicted error is within the request, else the exact theory) has a
+    measured error within the request; and the fast models are taken on some of them (the map is not vacuous)."""
+    emap = load_error_map()
+    rows = _rows(HERE.parent / "solver" / "data" / "fastsim_held_out.json")
+    assert len(rows) >= 50
+    chosen = []
+    for row in rows:
+        model = "bem"
+        for candidate in FAST_BY_COST:
+            predicted = emap.predict(candidate, row["ratio"], row["nu"], row["xi_hat"], row["eta_hat"],
+                                     row["phi_hat"])
+            if predicted is not None and predicted <= accuracy:
+                model = candidate
+                break
+        measured = 0.0 if model == "bem" else row[model]
+        assert measured <= accuracy, (row, model)
+        chosen.append(model)
+    if accuracy >= 0.05:
+        assert set(chosen) & set(FAST_BY_COST)
+
+
+@pytest.mark.parametrize("accuracy", REQUESTS)
+def test_auto_never_exceeds_the_request_on_held_out_shakedown_scenes(accuracy):
+    """For every held-out shakedown scene (w, f_t between the map's nodes, both alignments) the MDR model is taken
+    only where its measured u_sd error is within the request (a run that does not shake down has no u_sd: never)."""
+    mdr_map = load_mdr_map()
+    rows = _rows(HERE / "data" / "mdr_held_out.json")
+    assert len(rows) >= 20
+    for row in rows:
+        predicted = mdr_map.predict(dict(angle=row["angle"], w=row["w"], f_t=row["f_t"]))
+        if predicted is not None and predicted <= accuracy:
+            assert row["error"] is not None and row["error"] <= accuracy, row
+
+
+STEEL = """
+[materials]
+E1 = 210e3
+nu1 = 0.28
+E2 = 210e3
+nu2 = 0.28
+[load]
+Fn = 1000.0
+mu = 0.3
+"""
+
+
+@pytest.mark.parametrize("geometry, creep, accuracy", [
+    ("Rx = 60.0\nRy = 25.0", "xi = 3e-4", 0.08),
+    ("R = 40.0", "eta = 2e-4\nphi = 1e-3", 0.05),
+    ("Rx = 25.0\nRy = 60.0", "xi = 1e-4\neta = -3e-4", 0.03),
+])
+def test_auto_choice_holds_on_live_scenes(geometry, creep, accuracy):
+    """End to end on scenes off the map's nodes (ellipses of other a/b, creepages between its nodes): the run auto
+    chooses has forces within the request of the exact run of the same scene on the same grid (the map's measure,
+    |F - F_exact| / |F_exact|)."""
+    text = f"{STEEL}\n[geometry]\n{geometry}\n[rolling]\nmode = \"steady\"\n{creep}\n"
+    auto = Scene.from_toml_text(text + f'[solver]\nfidelity = "auto"\naccuracy = {accuracy}\n')
+    choice = choose_fidelity(auto)
+    result = run_scene(auto, None).summary
+    exact = run_scene(Scene.from_toml_text(text), None).summary
+    got, ref = np.array([result["F_x"], result["F_y"]]), np.array([exact["F_x"], exact["F_y"]])
+    assert result["fidelity_used"] == choice.model
+    assert np.hypot(*(got - ref)) <= accuracy * np.hypot(*ref)
+    assert math.isfinite(result["predicted_error"]) and result["predicted_error"] <= accuracy
