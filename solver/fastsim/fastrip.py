@@ -20,7 +20,7 @@ import numpy as np
 
 from rollcontact.bem.grid import Grid
 from rollcontact.solver.fastsim import _kernels
-from rollcontact.solver.fastsim.fastsim import FastResult, _checked, _result, solve_fastsim
+from rollcontact.solver.fastsim.fastsim import FastResult, checked_pressure, fast_result, solve_fastsim
 from rollcontact.solver.fastsim.flexibility import Flexibilities
 from rollcontact.solver.fastsim.strips import strip_edges
 
@@ -30,7 +30,7 @@ def solve_fastrip(grid: Grid, pressure, mu, xi=0.0, eta=0.0, phi=0.0, *, flexibi
     """Steady FaStrip under `pressure` (MPa, (ny, nx): contact where > 0, bound mu p) for the creepages xi, eta
     and spin phi (1/mm); arguments as `solver.fastsim.solve_fastsim` (edges: (leading, trailing) x of each cell's
     strip, mm; flexibility: of the FASTSIM pass that gives the slip zone's traction directions)."""
-    pressure = _checked(grid, pressure, mu, xi, eta, phi)
+    pressure = checked_pressure(grid, pressure, mu, xi, eta, phi)
     lead, trail = strip_edges(grid, pressure) if edges is None else (
         np.ascontiguousarray(edges[0], dtype=float), np.ascontiguousarray(edges[1], dtype=float))
     fast = solve_fastsim(grid, pressure, mu, xi, eta, phi, flexibilities=flexibilities, edges=(lead, trail),
@@ -41,4 +41,4 @@ def solve_fastrip(grid: Grid, pressure, mu, xi=0.0, eta=0.0, phi=0.0, *, flexibi
     _kernels.fastrip_rows(grid.x, grid.y, grid.dx, mu * pressure, pressure, lead, trail, float(mu), cx, cy, cphi,
                           float(xi), float(eta), float(phi), fast.traction, tau, region)
     slip = np.where(region == _kernels.SLIP, fast.slip, 0.0)
-    return _result(grid, tau, slip, region, (xi, eta, phi), "fastrip", fast.flexibility)
+    return fast_result(grid, tau, slip, region, (xi, eta, phi), "fastrip", fast.flexibility)

@@ -79,21 +79,23 @@ def solve_fastsim(grid: Grid, pressure, mu, xi=0.0, eta=0.0, phi=0.0, *, flexibi
     contact ellipse (`kalker_flexibilities`); edges: (leading, trailing) edge x of each cell's strip (mm, (ny, nx);
     default `strip_edges` of the pressure, `ellipse_edges` for an exact ellipse). ContactEdgeError if the contact
     reaches the grid's first or last column (a strip must start and end inside the grid)."""
-    pressure = _checked(grid, pressure, mu, xi, eta, phi)
+    pressure = checked_pressure(grid, pressure, mu, xi, eta, phi)
     lead = strip_edges(grid, pressure)[0] if edges is None else np.ascontiguousarray(edges[0], dtype=float)
     k = rates(flexibilities, xi, eta, phi, flexibility)
     bound = mu * pressure
     tau, slip = np.zeros((2,) + grid.shape), np.zeros((2,) + grid.shape)
     region = np.zeros(grid.shape, dtype=np.int8)
     _kernels.steady_rows(grid.x, grid.y, bound, lead, *k, tau, slip, region)
-    return _result(grid, tau, slip, region, (xi, eta, phi), "fastsim", _used(flexibilities, k, flexibility))
+    return fast_result(grid, tau, slip, region, (xi, eta, phi), "fastsim", _used(flexibilities, k, flexibility))
 
 
 def _used(flex, k, flexibility):
     return k[4] if flexibility == "weighted" else (flex.L1, flex.L2, flex.L3)
 
 
-def _checked(grid, pressure, mu, xi, eta, phi):
+def checked_pressure(grid, pressure, mu, xi, eta, phi):
+    """The pressure as a contiguous float array, after refusing what a fast model cannot take (InputError, or
+    ContactEdgeError for a contact touching the grid's first or last column)."""
     pressure = np.ascontiguousarray(pressure, dtype=float)
     if pressure.shape != grid.shape or not np.all(np.isfinite(pressure)) or np.any(pressure < 0):
         raise InputError(f"pressure: must be a finite, non-negative array of the grid's shape {grid.shape}")
@@ -111,7 +113,8 @@ def _checked(grid, pressure, mu, xi, eta, phi):
     return pressure
 
 
-def _result(grid, tau, slip, region, creepages, model, flexibility, origin=(0.0, 0.0)):
+def fast_result(grid, tau, slip, region, creepages, model, flexibility, origin=(0.0, 0.0)) -> FastResult:
+    """The FastResult of a traction field: forces (sum tau dA) and the moment about `origin`."""
     X, Y = grid.mesh()
     dA = grid.cell_area
     force = (float(tau[0].sum() * dA), float(tau[1].sum() * dA))
@@ -138,20 +141,20 @@ class FastsimRolling:
     def at_rest(self, pressure, centre=0.0, step=None) -> FastResult:
         """The initial state under `pressure` (MPa) with the contact centre at x = centre (mm): zero traction
         (step None), or the simplified theory's Cattaneo state under the rigid slip of one step (mm)."""
-        pressure = _checked(self.grid, pressure, self.mu, *self.creepages)
+        pressure = checked_pressure(self.grid, pressure, self.mu, *self.creepages)
         tau, slip = np.zeros((2,) + self.grid.shape), np.zeros((2,) + self.grid.shape)
         region = np.where(pressure > 0, _kernels.STICK, _kernels.EXTERIOR).astype(np.int8)
         if step is not None:
             _kernels.at_rest(self.grid.x, self.grid.y, centre, float(step), self.mu * pressure, *self._k, tau, slip,
                              region)
         self.traction, self._contact = tau, pressure > 0
-        return _result(self.grid, tau.copy(), slip, region, self.creepages, "fastsim", self._flexibility,
+        return fast_result(self.grid, tau.copy(), slip, region, self.creepages, "fastsim", self._flexibility,
                        (centre, 0.0))
 
     def step(self, pressure, centre, step) -> FastResult:
         """Roll the contact on by `step` (mm) to the centre x = centre (mm) under `pressure` (MPa) and return the
         state; slip over the step (mm)."""
-        pressure = _checked(self.grid, pressure, self.mu, *self.creepages)
+        pressure = checked_pressure(self.grid, pressure, self.mu, *self.creepages)
         contact = pressure > 0
         lead = strip_edges(self.grid, pressure)[0]
         tau, slip = self.traction, np.zeros((2,) + self.grid.shape)
@@ -159,5 +162,5 @@ class FastsimRolling:
         _kernels.transient_step(self.grid.x, self.grid.y, centre, float(step), self.mu * pressure, lead,
                                 contact & ~self._contact, *self._k, tau, slip, region)
         self._contact = contact
-        return _result(self.grid, tau.copy(), slip, region, self.creepages, "fastsim", self._flexibility,
+        return fast_result(self.grid, tau.copy(), slip, region, self.creepages, "fastsim", self._flexibility,
                        (centre, 0.0))
