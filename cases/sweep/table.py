@@ -31,6 +31,9 @@ periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself;
 #: the creepages xi, eta (dimensionless) and phi (1/mm), the forces F_x, F_y (N) and moment M_z (N mm) on the
 #: sphere in Kalker's convention, and the stick fraction of the contact.
 CREEP_COLUMNS = ("xi", "eta", "phi", "F_x", "F_y", "M_z", "stick_fraction")
+#: Further columns of a sweep whose scenes ask for solver.fidelity = "auto" (cases.run.fidelity), added only when its
+#: runs have them: the model each run chose and its predicted error (docs/creep_fidelity.md).
+AUTO_COLUMNS = ("fidelity_used", "predicted_error")
 
 #: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
@@ -51,8 +54,11 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     rows = sorted(rows, key=lambda r: r.get("index", 0))
-    if columns is SUMMARY_COLUMNS and any(r.get("F_x") is not None for r in rows):
-        columns = SUMMARY_COLUMNS + CREEP_COLUMNS      # a sweep over a [rolling] scene
+    if columns is SUMMARY_COLUMNS:
+        if any(r.get("F_x") is not None for r in rows):
+            columns = columns + CREEP_COLUMNS          # a sweep over a [rolling] scene
+        if any(r.get("predicted_error") is not None for r in rows):
+            columns = columns + AUTO_COLUMNS           # a sweep of solver.fidelity = "auto"
     header = list(keys) + [c for c in columns if c not in keys]
     tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
     try:
