@@ -192,41 +192,48 @@ def test_fastrip_strip_is_carters_two_dimensional_solution(s):
     assert tau.sum() / (mu * pressure[j0].sum()) == pytest.approx(1 - (1 - s) ** 2, rel=0.01)
 
 
-@pytest.fixture(scope="module")
-def circle_curves():
-    """a/b = 1, nu = 0.28, mu = 0.3, 31 elements across: the exact steady solver and both fast models over
-    fractions 0.1 ... 2 of the saturation creepage, for pure xi and for eta with spin adding to it (phi / phi* =
-    eta / eta* / 2); the force error |F - F_exact| / |F_exact| of each model per point."""
+_CURVES = {}
+
+
+def _curve_errors(ratio, case):
+    """nu = 0.28, mu = 0.3, 31 elements across the ellipse a/b = ratio: the exact steady solver and both fast models
+    over fractions 0.1 ... 2 of the saturation creepage, for pure xi, pure eta, and eta with spin adding to it
+    (phi / phi* = eta / eta* / 2); the force error |F - F_exact| / |F_exact| of each model per point (cached)."""
+    if (ratio, case) in _CURVES:
+        return _CURVES[ratio, case]
     nu, mu = 0.28, 0.3
-    grid, pressure, a, b = _ellipse(1.0, 31)
+    grid, pressure, a, b = _ellipse(ratio, 31)
     pair = MaterialPair.from_moduli(2 * (1 + nu), nu, 2 * (1 + nu), nu)
     problem, flex = SteadyRolling(grid, pair), kalker_flexibilities(a, b, 1.0, nu)
-    c11, c22, c23 = kalker_coefficients(1.0, nu)
+    c11, c22, c23 = kalker_coefficients(ratio, nu)
     mu_fn = mu * pressure.sum() * grid.cell_area
-    errors = {}
-    for case, unit in (("xi", (1 / c11, 0, 0)), ("eta+phi", (0, 1 / c22, 0.5 / c23))):
-        rows = {"fastsim": [], "fastrip": []}
-        previous = None
-        for f in (0.1, 0.3, 0.6, 1.0, 2.0):
-            creep = [f * mu_fn * u for u in unit]
-            exact = solve_steady(problem, pressure, mu, *creep, initial=previous)
-            previous = exact.traction
-            for model, solve in SOLVERS.items():
-                got = solve(grid, pressure, mu, *creep, flexibilities=flex)
-                rows[model].append(np.hypot(*np.subtract(got.force, exact.force)) / np.hypot(*exact.force))
-        errors[case] = rows
-    return errors
+    unit = {"xi": (1 / c11, 0, 0), "eta": (0, 1 / c22, 0), "eta+phi": (0, 1 / c22, 0.5 / c23)}[case]
+    rows = {"fastsim": [], "fastrip": []}
+    previous = None
+    for f in (0.1, 0.3, 0.6, 1.0, 2.0):
+        creep = [f * mu_fn * u for u in unit]
+        exact = solve_steady(problem, pressure, mu, *creep, initial=previous)
+        previous = exact.traction
+        for model, solve in SOLVERS.items():
+            got = solve(grid, pressure, mu, *creep, flexibilities=flex)
+            rows[model].append(np.hypot(*np.subtract(got.force, exact.force)) / np.hypot(*exact.force))
+    _CURVES[ratio, case] = rows
+    return rows
 
 
-@pytest.mark.parametrize("case", ["xi", "eta+phi"])
-def test_fastrip_is_closer_to_the_exact_theory_than_fastsim(circle_curves, case):
+@pytest.mark.parametrize("ratio, case", [(0.2, "xi"), (1.0, "xi"), (5.0, "xi"), (0.2, "eta"), (1.0, "eta"),
+                                         (5.0, "eta"), (1.0, "eta+phi"), (5.0, "eta+phi")])
+def test_fastrip_is_closer_to_the_exact_theory_than_fastsim(ratio, case):
     """Sichani, Enblom & Berg (2016) report FaStrip's creep forces closer to the exact theory than FASTSIM's, the
-    largest gain with lateral creepage and spin together. On the circle: the largest error over the curve is smaller
-    for FaStrip (measured xi: FASTSIM 5.8 %, FaStrip 0.8 %; eta + phi: FASTSIM 22 %, FaStrip 1.9 %), and FASTSIM's
-    stays in the 5-25 % the literature quotes for it."""
-    errors = circle_curves[case]
+    largest gain with lateral creepage and spin together: the largest error over the curve is smaller for FaStrip in
+    pure xi and eta at a/b = 0.2, 1, 5 and with spin adding to eta at a/b = 1 and 5 (measured on the circle: xi FASTSIM
+    5.8 %, FaStrip 0.8 %; eta + phi 22 % and 1.9 %). Not where FaStrip's strips meet spin across a wide contact:
+    a/b = 0.2 with eta + phi FASTSIM is the closer (docs/creep_fidelity.md). FASTSIM's error stays in the 5-25 % the
+    literature quotes for it without spin."""
+    errors = _curve_errors(ratio, case)
     assert max(errors["fastrip"]) < max(errors["fastsim"])
-    assert 0.02 < max(errors["fastsim"]) < 0.25
+    if case != "eta+phi":
+        assert 0.02 < max(errors["fastsim"]) < 0.25
 
 
 def test_fast_patch_from_semi_axes_equals_the_grid_call():
