@@ -54,7 +54,7 @@ class FastSteady:
 class FastTangential:
     """A fast model's step in the shape the transient run stores (cases.run.creep_transient): traction (2, ny, nx)
     MPa and slip over the step (mm) of the substrate relative to the sphere, the displacement L tau (mm), region,
-    force (N, on the substrate), one pass (iterations), no residual."""
+    force (N, on the substrate), the flexibility L (mm/MPa), one pass (iterations), no residual."""
     traction: np.ndarray
     slip: np.ndarray
     displacement: np.ndarray
@@ -134,7 +134,7 @@ def roll_fast(scene: Scene, op: HalfSpaceOperator, *, distance: float, step: flo
     if cols.size and cols[-1] + math.ceil(n * step / grid.dx - 1e-9) >= grid.nx - 1:
         raise ContactEdgeError(f"the grid is too short for the contact rolled {n * step:.6g} mm ([rolling] distance, "
                                f"{n} steps of {step:.6g} mm) with a free cell ahead")
-    yield _record(0, 0.0, normal, state, flex, grid, creep, shift, t0, c0)
+    yield _record(0, 0.0, normal, state, grid, creep, shift, t0, c0)
     cells = round(step / grid.dx)
     for k in range(1, n + 1):
         t0, c0 = time.perf_counter(), time.process_time()
@@ -144,16 +144,16 @@ def roll_fast(scene: Scene, op: HalfSpaceOperator, *, distance: float, step: flo
         pressure, _ = bound_pressure(scene, grid, normal.pressure, centre)
         state = rolling.step(pressure, centre, step)
         shift = shift + np.array([xi, eta]) * step
-        yield _record(k, centre, normal, state, flex, grid, (xi, eta, phi), shift, t0, c0)
+        yield _record(k, centre, normal, state, grid, (xi, eta, phi), shift, t0, c0)
 
 
-def _record(k, centre, normal, state, flex, grid, creepages, shift, t0, c0) -> CreepStep:
+def _record(k, centre, normal, state, grid, creepages, shift, t0, c0) -> CreepStep:
     """A CreepStep of the fast model: the substrate's traction, slip and displacement (L tau), the forces on the
     sphere (Kalker's), the moment about the contact centre."""
     tau_sub = -state.traction
     L = state.flexibility if np.isscalar(state.flexibility) else None
     disp = tau_sub * (L if L is not None else np.array(state.flexibility[:2])[:, None, None])
     force_sub = tau_sub.sum(axis=(1, 2)) * grid.cell_area
-    tang = FastTangential(tau_sub, -state.slip, disp, state.region, force_sub, flex.weighted(*creepages))
+    tang = FastTangential(tau_sub, -state.slip, disp, state.region, force_sub, state.flexibility)
     return CreepStep(k, centre, normal, tang, np.asarray(state.force, dtype=float), state.moment, tuple(creepages),
                      np.asarray(shift, dtype=float), 1, time.perf_counter() - t0, time.process_time() - c0)
