@@ -4,7 +4,8 @@
     .venv/bin/python benchmarks/creep_error_map.py [-o DIR] [--quick] [--elements 41]
         # writes DIR/error_map.json and DIR/held_out.json (default DIR: results/creep_error_map)
     .venv/bin/python benchmarks/creep_error_map.py --map-out solver/fastsim/error_map.json \\
-        --held-out-out tests/solver/data/fastsim_held_out.json     # refresh the committed files (~10 min)
+        --held-out-out tests/solver/data/fastsim_held_out.json     # refresh the committed files (~45 min)
+    .venv/bin/python benchmarks/creep_error_map.py --held-out-only --seed N --held-out-out FILE   # a new draw
 
 For each Poisson ratio nu and a/b of the map, identical bodies (G = 1 MPa, K = 0) with Hertz's pressure on the
 ellipse's cells (solver.creep.ellipse_grid, `--elements` across each axis), mu = 0.3: along each direction of the
@@ -12,9 +13,13 @@ normalised creepage (theta from the +phi axis, alpha in the xi-eta plane; solver
 grows through the map's t values; the exact steady solver (solver.creep.creep_curve, warm-started, tol 1e-7) and
 both fast models solve each point on the same grid and pressure, and the map stores |F - F_exact| / |F_exact| per
 model, |F_exact| / (mu Fn), and the median CPU time per case of each model (the exact solver's from cold solves).
-The held-out set: scenes drawn at random (seeded) inside the map's ranges but off its nodes, each solved cold by the
-exact solver and both fast models, with the errors measured the same way; tests/solver/test_fidelity_choice.py
-checks on them that the map's prediction never lets `auto` choose a model whose measured error exceeds the request.
+The resolution margin: at a/b = 0.2, 1, 5 (nu = 0.28) and a coarser grid of directions and t, each model's error is
+measured again at 81 elements across; twice its largest growth from 41 to 81 (per theta and t) is stored and added
+to the predictions (both models converge at first order in the element size, most slowly with spin: the continuum
+lies about twice that growth beyond). The held-out set: 100 scenes drawn at random (seeded; --seed) inside the map's
+ranges but off its nodes, each solved cold by the exact solver and both fast models at 41 elements across, and 40
+more at 81; tests/cases/test_fidelity_auto.py checks on them that the map's prediction never lets `auto` choose a
+model whose measured error exceeds the request.
 """
 from __future__ import annotations
 
@@ -44,8 +49,11 @@ MU = 0.3
 MODELS = {"fastsim": solve_fastsim, "fastrip": solve_fastrip}
 FULL = dict(nu=(0.0, 0.28, 0.5), ratio=(0.2, 0.35, 0.5, 1.0, 2.0, 3.0, 5.0),
             theta=(0, 15, 30, 45, 60, 75, 90, 105, 120, 135, 150, 165, 180), alpha=(0, 22.5, 45, 67.5, 90),
-            t=(0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0, 10.0, 20.0), held_out=100)
-QUICK = dict(nu=(0.28,), ratio=(0.5, 2.0), theta=(0, 90, 180), alpha=(0, 90), t=(0.1, 0.5, 1.0, 3.0), held_out=4)
+            t=(0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0, 10.0, 20.0), held_out=100,
+            margin=dict(ratio=(0.2, 1.0, 5.0), theta=(0, 30, 60, 90, 120, 150, 180), alpha=(0, 45, 90),
+                        t=(0.1, 0.35, 1.0, 3.0, 10.0), fine=81), held_out_fine=40)
+QUICK = dict(nu=(0.28,), ratio=(0.5, 2.0), theta=(0, 90, 180), alpha=(0, 90), t=(0.1, 0.5, 1.0, 3.0), held_out=4,
+             margin=dict(ratio=(1.0,), theta=(0, 90, 180), alpha=(0,), t=(0.35, 3.0), fine=61), held_out_fine=2)
 PARAMS = SteadyParams(tol=1e-7, max_sweeps=5000)
 
 
@@ -119,7 +127,34 @@ def build_map(config, elements, log=print):
     return errors, exact_force, {m: statistics.median(v) for m, v in seconds.items() if v}
 
 
-def held_out(config, elements, count, seed=20261128, log=print):
+def resolution_margin(config, elements, log=print):
+    """How much a model's error grows from `elements` to `fine` elements across (nu = 0.28, the largest increase over
+    the margin grid's a/b and alpha, per theta and t), doubled: both discretisations converge at first order in the
+    element size, so the continuum's error lies about twice the 41 -> 81 change beyond the 41-element one. The map's
+    predictions add it (solver.fastsim.error_map)."""
+    grid_cfg = config["margin"]
+    out = {m: np.zeros((len(grid_cfg["theta"]), len(grid_cfg["t"]))) for m in MODELS}
+    nu = 0.28
+    for ratio in grid_cfg["ratio"]:
+        cases = {n: Ellipse(nu, ratio, n) for n in (elements, grid_cfg["fine"])}
+        for k, theta in enumerate(grid_cfg["theta"]):
+            for alpha in grid_cfg["alpha"]:
+                direction = unit_vector(theta, alpha)
+                for n_t, t in enumerate(grid_cfg["t"]):
+                    err = {}
+                    for n, case in cases.items():
+                        creep = case.creepages(direction, t)
+                        exact = np.array(solve_steady(case.problem, case.pressure, MU, *creep, params=PARAMS).force)
+                        err[n] = {m: relative_error(case.fast(m, creep)[0], exact) for m in MODELS}
+                    for m in MODELS:
+                        grow = 2.0 * max(0.0, err[grid_cfg["fine"]][m] - err[elements][m])
+                        out[m][k, n_t] = max(out[m][k, n_t], grow)
+        log(f"resolution margin a/b {ratio}: largest fastsim {out['fastsim'].max():.4f}, fastrip "
+            f"{out['fastrip'].max():.4f}")
+    return out
+
+
+def held_out(config, elements, count, seed, log=print):
     """`count` scenes at random inside the map's ranges (nu uniform, a/b log-uniform, direction uniform on the
     reduced sphere, t log-uniform over the map's t range), each solved cold: their coordinates and errors."""
     rng = np.random.default_rng(seed)
@@ -158,6 +193,8 @@ def main(argv=None):
     parser.add_argument("--held-out-out", help="write the held-out set here instead")
     parser.add_argument("--quick", action="store_true", help="a small map and 4 held-out scenes (seconds)")
     parser.add_argument("--elements", type=int, default=41, help="elements across each axis (default 41)")
+    parser.add_argument("--held-out-only", action="store_true", help="measure the held-out set alone (no map)")
+    parser.add_argument("--seed", type=int, default=20261130, help="seed of the held-out draw (and + 1 for the fine one)")
     args = parser.parse_args(argv)
     config = QUICK if args.quick else FULL
     out = Path(args.output)
@@ -165,21 +202,32 @@ def main(argv=None):
     held_path = Path(args.held_out_out) if args.held_out_out else out / "held_out.json"
     load = os.getloadavg()
     start = time.perf_counter()
-    errors, exact_force, seconds = build_map(config, args.elements)
-    rows = held_out(config, args.elements, config["held_out"])
+    if not args.held_out_only:
+        errors, exact_force, seconds = build_map(config, args.elements)
+        margin = resolution_margin(config, args.elements)
+    rows = held_out(config, args.elements, config["held_out"], seed=args.seed)
+    fine = config["margin"]["fine"]
+    rows_fine = held_out(config, fine, config["held_out_fine"], seed=args.seed + 1)
     info = dict(date=datetime.date.today().isoformat(), machine=platform.machine(), python=platform.python_version(),
                 cpu_count=os.cpu_count(), loadavg_before=load, loadavg_after=os.getloadavg(),
                 wall_time_s=time.perf_counter() - start, quick=args.quick,
-                command="benchmarks/creep_error_map.py" + (" --quick" if args.quick else ""))
-    data = dict(quantity="|F - F_exact| / |F_exact| of (Fx, Fy) on the same grid and pressure",
-                reference="solver.creep.solve_steady (Kalker's steady theory on the grid), tol 1e-7",
-                setting=f"identical bodies, G = 1 MPa, K = 0; Hertz pressure on {args.elements} elements across each "
-                        f"axis of the ellipse (solver.creep.ellipse_grid), c = sqrt(ab) = 1 mm, mu = {MU}",
-                elements=args.elements, models=list(MODELS),
-                axes={k: list(config[k]) for k in ("nu", "ratio", "theta", "alpha", "t")},
-                errors={m: _rounded(e) for m, e in errors.items()}, exact_force=_rounded(exact_force),
-                seconds_per_case=seconds, **info)
-    for path, payload in ((map_path, data), (held_path, dict(info, elements=args.elements, rows=rows))):
+                command="benchmarks/creep_error_map.py" + (" --quick" if args.quick else ""), seed=args.seed)
+    outputs = [(held_path, dict(info, elements=args.elements, rows=rows, fine_elements=fine, rows_fine=rows_fine))]
+    if not args.held_out_only:
+        info.pop("seed")
+        data = dict(quantity="|F - F_exact| / |F_exact| of (Fx, Fy) on the same grid and pressure",
+                    reference="solver.creep.solve_steady (Kalker's steady theory on the grid), tol 1e-7",
+                    setting=f"identical bodies, G = 1 MPa, K = 0; Hertz pressure on {args.elements} elements across "
+                            f"each axis of the ellipse (solver.creep.ellipse_grid), c = sqrt(ab) = 1 mm, mu = {MU}",
+                    elements=args.elements, models=list(MODELS),
+                    axes={k: list(config[k]) for k in ("nu", "ratio", "theta", "alpha", "t")},
+                    errors={m: _rounded(e) for m, e in errors.items()}, exact_force=_rounded(exact_force),
+                    resolution_margin=dict(elements=[args.elements, fine], theta=list(config["margin"]["theta"]),
+                                           t=list(config["margin"]["t"]), ratio=list(config["margin"]["ratio"]),
+                                           **{m: _rounded(v) for m, v in margin.items()}),
+                    seconds_per_case=seconds, **info)
+        outputs.insert(0, (map_path, data))
+    for path, payload in outputs:
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(json.dumps(payload, indent=None, separators=(",", ":")) + "\n")
         print(path.resolve())

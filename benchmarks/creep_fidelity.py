@@ -69,17 +69,20 @@ def error_table(creep_map):
 
 
 def exact_discretisation(creep_map, quick):
-    """The exact solver's force at 21 and 41 elements across against 81, and its cold CPU time per case, along the
-    table's curves (a subset of the map's t)."""
+    """Along the table's curves (a subset of the map's t): the exact solver's force at 21 and 41 elements across
+    against 81 and its cold CPU time per case ('exact' rows); and each fast model's error against the exact solver on
+    the same grid at 41 and at 81 elements ('resolution' rows: how far the map's 41-element measure is from a finer
+    one, the margin its predictions carry, solver.fastsim.error_map.RESOLUTION_MARGIN)."""
     ax = creep_map["axes"]
-    ratios = (1.0,) if quick else tuple(ax["ratio"])
+    ratios = (1.0,) if quick else tuple(r for r in ax["ratio"] if r in (0.2, 0.5, 1.0, 2.0, 5.0))
     ts = (0.2, 1.0) if quick else (0.1, 0.35, 1.0, 3.0)
     levels = (21, 41) if quick else (21, 41, 81)
     pair = MaterialPair.from_moduli(2 * (1 + NU), NU, 2 * (1 + NU), NU)
-    out = []
+    exact_rows, resolution_rows = [], []
     for ratio in ratios:
         a, b = math.sqrt(ratio), 1 / math.sqrt(ratio)
         c11, c22, c23 = kalker_coefficients(ratio, NU)
+        flex = kalker_flexibilities(a, b, 1.0, NU)
         cases = {}
         for n in levels:
             grid = ellipse_grid(a, b, n)
@@ -90,16 +93,25 @@ def exact_discretisation(creep_map, quick):
                 th, al = math.radians(theta), math.radians(alpha)
                 d = np.array([math.sin(th) * math.cos(al), math.sin(th) * math.sin(al), math.cos(th)])
                 for t in ts:
+                    creep = t * d * unit
                     c0 = time.process_time()
-                    res = solve_steady(problem, p, MU, *(t * d * unit), params=SteadyParams(tol=1e-7))
-                    cases.setdefault((name, t), {})[n] = (np.array(res.force), time.process_time() - c0)
+                    res = solve_steady(problem, p, MU, *creep, params=SteadyParams(tol=1e-7))
+                    seconds = time.process_time() - c0
+                    F = np.array(res.force)
+                    fast = {m: float(np.hypot(*(np.array(solve(grid, p, MU, *creep, flexibilities=flex).force) - F))
+                                     / np.hypot(*F)) for m, solve in (("fastsim", solve_fastsim),
+                                                                      ("fastrip", solve_fastrip))}
+                    cases.setdefault((name, t), {})[n] = (F, seconds, fast)
         ref = levels[-1]
         for (name, t), by_n in cases.items():
             F = by_n[ref][0]
             for n in levels[:-1]:
-                out.append(dict(ratio=ratio, curve=name, t=t, elements=n, seconds=by_n[n][1],
-                                error=float(np.hypot(*(by_n[n][0] - F)) / np.hypot(*F))))
-    return out
+                exact_rows.append(dict(ratio=ratio, curve=name, t=t, elements=n, seconds=by_n[n][1],
+                                       error=float(np.hypot(*(by_n[n][0] - F)) / np.hypot(*F))))
+            if 41 in by_n and ref != 41:
+                resolution_rows.append(dict(ratio=ratio, curve=name, t=t, **{
+                    f"{m}_{n}": by_n[n][2][m] for m in ("fastsim", "fastrip") for n in (41, ref)}))
+    return exact_rows, resolution_rows
 
 
 def contact_example(quick):
@@ -245,14 +257,17 @@ def main(argv=None):
     mdr_map = load_json(ROOT / "solver" / "mdr" / "error_map.json")
     resolution = load_json(HERE / "results" / "default_resolution.json")
     table = error_table(creep_map)
-    exact_rows = exact_discretisation(creep_map, args.quick)
+    exact_rows, resolution_rows = exact_discretisation(creep_map, args.quick)
     example = contact_example(args.quick)
     out = Path(args.output)
     chart(table, exact_rows, creep_map, mdr_map, resolution, out / "creep_fidelity.png")
     data = dict(date=datetime.date.today().isoformat(), loadavg_before=load, loadavg_after=os.getloadavg(),
                 wall_time_s=time.perf_counter() - start, quick=args.quick,
                 table=[{k: v for k, v in r.items() if not k.endswith("_errors")} for r in table],
-                exact_discretisation=exact_rows, contact_example=example,
+                exact_discretisation=exact_rows, resolution=resolution_rows,
+                resolution_largest_change={m: max((abs(r[f"{m}_41"] - r[f"{m}_81"]) for r in resolution_rows),
+                                                  default=None) for m in ("fastsim", "fastrip")},
+                contact_example=example,
                 seconds_per_case=creep_map["seconds_per_case"], mdr_seconds_per_run=mdr_map["seconds_per_run"])
     (out / "creep_fidelity.json").write_text(json.dumps(data, indent=1) + "\n")
     print_tables(table, example)

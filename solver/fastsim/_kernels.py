@@ -218,8 +218,11 @@ def fastrip_rows(x, y, dx, bound, pressure, lead, trail, mu, cx, cy, cphi, xi, e
 
 @numba.njit(cache=True)
 def _stick_shift(A, B, Phi):
-    """The shift e (mm) of the strip's stick zone from A^2 + (B + Phi e)^2 = e^2 (the root that is 0 without
-    creepage), or inf for a strip that slides entirely (no non-negative root)."""
+    """The shift e (mm) of the strip's stick zone from A^2 + (B + Phi e)^2 = e^2, i.e. (1 - Phi^2) e^2 - 2 B Phi e -
+    (A^2 + B^2) = 0: for |Phi| < 1 the non-negative root (0 without creepage); for |Phi| > 1 the smaller positive
+    root, which exists only when the lateral creepage opposes the spin (B Phi < 0) strongly enough; else inf, a strip
+    that slides entirely. At |Phi| > 1 the degenerate root e = 0 of A = B = 0 (the strip through the spin pole) is
+    the limit of sliding strips on either side and slides too."""
     q = 1.0 - Phi * Phi
     disc = B * B + q * A * A
     if disc < 0.0:
@@ -227,6 +230,8 @@ def _stick_shift(A, B, Phi):
     if abs(q) < 1e-12:                      # |Phi| = 1: 2 B Phi e + A^2 + B^2 = 0
         if B * Phi < 0.0:
             return -(A * A + B * B) / (2.0 * B * Phi)
+        return np.inf
+    if q < 0.0 and not B * Phi < 0.0:
         return np.inf
     e = (B * Phi + math.sqrt(disc)) / q
     if not (e >= 0.0) or not math.isfinite(e):

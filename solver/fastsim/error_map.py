@@ -12,7 +12,9 @@ y, and reversing every creepage, leave |F - F_exact| / |F_exact| unchanged): |xi
 
 The error is |F - F_exact| / |F_exact| of the force vector (Fx, Fy) on the same grid and pressure (the exact
 solver's own discretisation error is not in it). Prediction (solver.accuracy_map): the largest error at the corners
-of the map's cell, none outside its a/b and nu; t beyond the end nodes takes the end node's error.
+of the map's cell plus the largest resolution margin at the corners of its (theta, t) cell (twice the growth of the
+error from 41 to 81 elements across: the fast models converge at first order, slowest with spin) plus
+RESOLUTION_MARGIN; none outside its a/b and nu; t beyond the end nodes takes the end node's error.
 """
 from __future__ import annotations
 
@@ -29,6 +31,11 @@ from rollcontact.solver.creep.kalker import kalker_coefficients
 
 #: The packaged map (benchmarks/creep_error_map.py --map-out regenerates it).
 MAP_NAME = "error_map.json"
+
+#: Added to every prediction besides the map's own resolution margin: the map measures each model against the exact
+#: solver at 41 elements across the ellipse, and a scene's cells fall differently on its contact (measured: the
+#: difference moves by up to half a percent of |F| between neighbouring a/b on the same grid).
+RESOLUTION_MARGIN = 0.005
 
 
 def normalised_creepages(xi, eta, phi, a, b, G, nu, mu, normal_force) -> tuple[float, float, float]:
@@ -59,12 +66,17 @@ class CreepErrorMap:
     models: tuple
     seconds_per_case: dict
     meta: dict
+    margin: ErrorTable | None = None
 
     def predict(self, model: str, ratio: float, nu: float, xi_hat: float, eta_hat: float, phi_hat: float):
-        """The predicted error of `model` at a/b = ratio, Poisson ratio nu and the normalised creepages, or None
-        outside the map."""
+        """The predicted error of `model` at a/b = ratio, Poisson ratio nu and the normalised creepages (the corner
+        maximum plus RESOLUTION_MARGIN), or None outside the map."""
         theta, alpha, t = creep_coordinates(xi_hat, eta_hat, phi_hat)
-        return self.table.predict(model, dict(nu=nu, ratio=ratio, theta=theta, alpha=alpha, t=t))
+        value = self.table.predict(model, dict(nu=nu, ratio=ratio, theta=theta, alpha=alpha, t=t))
+        if value is None:
+            return None
+        extra = 0.0 if self.margin is None else self.margin.predict(model, dict(theta=theta, t=t))
+        return value + extra + RESOLUTION_MARGIN
 
     def cell(self, ratio, nu, xi_hat, eta_hat, phi_hat) -> dict | None:
         theta, alpha, t = creep_coordinates(xi_hat, eta_hat, phi_hat)
@@ -78,8 +90,13 @@ def map_from_json(data: dict) -> CreepErrorMap:
         axes = (Axis("nu", tuple(ax["nu"])), Axis("ratio", tuple(ax["ratio"])), Axis("theta", tuple(ax["theta"])),
                 Axis("alpha", tuple(ax["alpha"])), Axis("t", tuple(ax["t"]), clamped=True))
         errors = {m: _floats(data["errors"][m]) for m in data["models"]}
+        margin = None
+        if "resolution_margin" in data:
+            rm = data["resolution_margin"]
+            margin = ErrorTable((Axis("theta", tuple(rm["theta"])), Axis("t", tuple(rm["t"]), clamped=True)),
+                                {m: _floats(rm[m]) for m in data["models"]})
         return CreepErrorMap(ErrorTable(axes, errors), tuple(data["models"]), dict(data["seconds_per_case"]),
-                             {k: v for k, v in data.items() if k not in ("errors", "exact_force")})
+                             {k: v for k, v in data.items() if k not in ("errors", "exact_force")}, margin)
     except (KeyError, TypeError) as exc:
         raise InputError(f"creep error map: not a map written by benchmarks/creep_error_map.py ({exc!r})") from None
 
