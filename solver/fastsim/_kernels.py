@@ -210,19 +210,24 @@ def fastrip_rows(x, y, dx, bound, pressure, lead, trail, mu, cx, cy, cphi, xi, e
             A = (xi - phi * y[j]) * cx / (mu * P)
             B = eta * cy / (mu * P)
             Phi = phi * cphi / (mu * P)
-            e = _stick_shift(A, B, Phi)
+            e = _stick_shift(A, B, Phi, half)
             for k in range(start, end + 1):
                 _fastrip_cell(x[k], dx, m, half, e, A, B, Phi, mu * P, bound[j, k], fast[0, j, k],
                               fast[1, j, k], k == start, k == end, tau, region, j, k)
 
 
 @numba.njit(cache=True)
-def _stick_shift(A, B, Phi):
+def _stick_shift(A, B, Phi, half):
     """The shift e (mm) of the strip's stick zone from A^2 + (B + Phi e)^2 = e^2, i.e. (1 - Phi^2) e^2 - 2 B Phi e -
     (A^2 + B^2) = 0: for |Phi| < 1 the non-negative root (0 without creepage); for |Phi| > 1 the smaller positive
     root, which exists only when the lateral creepage opposes the spin (B Phi < 0) strongly enough; else inf, a strip
     that slides entirely. At |Phi| > 1 the degenerate root e = 0 of A = B = 0 (the strip through the spin pole) is
-    the limit of sliding strips on either side and slides too."""
+    the limit of sliding strips on either side and slides too; A and B below 1e-12 of the strip's half-length `half`
+    (rounding in the creepages) count as zero, so that the branch does not depend on them."""
+    if abs(A) <= 1e-12 * half:
+        A = 0.0
+    if abs(B) <= 1e-12 * half:
+        B = 0.0
     q = 1.0 - Phi * Phi
     disc = B * B + q * A * A
     if disc < 0.0:
