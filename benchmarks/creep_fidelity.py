@@ -229,22 +229,41 @@ def chart(table, exact_rows, creep_map, mdr_map, resolution, path):
 
 
 def print_tables(table, example):
-    print("\n| a/b | curve | FASTSIM max | FASTSIM median | FaStrip max | FaStrip median |")
-    print("|---|---|---|---|---|---|")
-    for r in table:
-        print(f"| {r['ratio']:g} | {r['curve']} | {100 * r['fastsim_max']:.1f} % | {100 * r['fastsim_median']:.1f} % "
-              f"| {100 * r['fastrip_max']:.1f} % | {100 * r['fastrip_median']:.1f} % |")
-    print("\n| CONTACT fastsim example | Fy (N) | Mz (N mm) | CONTACT Fy | CONTACT Mz |")
+    """The page's tables: per a/b of the issue (0.2, 0.5, 1, 2, 5) and curve the largest and the median error over
+    the map's t (FASTSIM / FaStrip, %); CONTACT's example beside CONTACT's output."""
+    names = {"xi": "xi", "eta": "eta", "phi": "phi", "eta+phi": "eta + phi", "eta-phi": "eta - phi",
+             "xi+eta": "xi + eta"}
+    for stat in ("max", "median"):
+        print(f"\n{'Largest' if stat == 'max' else 'Median'} error over t = 0.05 ... 20 (FASTSIM / FaStrip):\n")
+        print("| a/b | " + " | ".join(names.values()) + " |")
+        print("|---" * (len(names) + 1) + "|")
+        for ratio in (0.2, 0.5, 1.0, 2.0, 5.0):
+            cells = []
+            for curve in names:
+                r = next(r for r in table if r["ratio"] == ratio and r["curve"] == curve)
+                cells.append(f"{100 * r[f'fastsim_{stat}']:.1f} / {100 * r[f'fastrip_{stat}']:.1f}")
+            print(f"| {ratio:g} | " + " | ".join(cells) + " |")
+    labels = {"exact": "exact theory, 44 x 44", "fastsim_ellipsoid_weighted": "FASTSIM, weighted L, ellipsoid, 44",
+              "fastsim_ellipsoid_three": "FASTSIM, 3 L, ellipsoid, 44 (case 3)",
+              "fastsim_parabolic_weighted": "FASTSIM, weighted L, parabolic, 44",
+              "fastsim_parabolic_three": "FASTSIM, 3 L, parabolic, 44 (case 2)", "fastrip": "FaStrip, 44 (case 4)",
+              "fine_fastsim_ellipsoid_weighted": "FASTSIM, weighted L, ellipsoid, 220",
+              "fine_fastsim_ellipsoid_three": "FASTSIM, 3 L, ellipsoid, 220 (case 6)",
+              "fine_fastsim_parabolic_weighted": "FASTSIM, weighted L, parabolic, 220",
+              "fine_fastsim_parabolic_three": "FASTSIM, 3 L, parabolic, 220 (case 5)",
+              "fine_fastrip": "FaStrip, 220 (case 7)"}
+    refs = {"exact": "exact", "fastsim_parabolic_three": "fastsim_parabolic_3flex",
+            "fastsim_ellipsoid_three": "fastsim_ellipsoid_3flex", "fastrip": "fastrip",
+            "fine_fastsim_parabolic_three": "fine_fastsim_parabolic_3flex",
+            "fine_fastsim_ellipsoid_three": "fine_fastsim_ellipsoid_3flex", "fine_fastrip": "fine_fastrip"}
+    print("\n| CONTACT's fastsim example | Fy (N) | Mz (N mm) | CONTACT Fy, Mz | Fy against CONTACT |")
     print("|---|---|---|---|---|")
-    names = dict(exact="exact", fastsim_parabolic_three="fastsim_parabolic_3flex",
-                 fastsim_ellipsoid_three="fastsim_ellipsoid_3flex", fastrip="fastrip",
-                 fine_fastsim_parabolic_three="fine_fastsim_parabolic_3flex",
-                 fine_fastsim_ellipsoid_three="fine_fastsim_ellipsoid_3flex", fine_fastrip="fine_fastrip")
-    for key, value in example.items():
-        if key in ("contact", "exact_pmax"):
-            continue
-        ref = example["contact"].get(names.get(key, ""), ("", ""))
-        print(f"| {key} | {value[0]:.4g} | {value[1]:.4g} | {ref[0]} | {ref[1]} |")
+    for key, label in labels.items():
+        fy, mz = example[key]
+        ref = example["contact"].get(refs.get(key, ""))
+        beside = f"{ref[0]:.4g}, {ref[1]:.4g}" if ref else ""
+        diff = f"{100 * (fy / ref[0] - 1):+.1f} %" if ref else f"{100 * (fy / example['exact'][0] - 1):+.1f} % (exact)"
+        print(f"| {label} | {fy:.5g} | {mz:.5g} | {beside} | {diff} |")
 
 
 def main(argv=None):

@@ -222,11 +222,11 @@ def _curve_errors(ratio, case):
 
 
 @pytest.mark.parametrize("ratio, case", [(0.2, "xi"), (1.0, "xi"), (5.0, "xi"), (0.2, "eta"), (1.0, "eta"),
-                                         (5.0, "eta"), (1.0, "eta+phi"), (5.0, "eta+phi")])
+                                         (5.0, "eta"), (0.5, "eta+phi"), (1.0, "eta+phi"), (5.0, "eta+phi")])
 def test_fastrip_is_closer_to_the_exact_theory_than_fastsim(ratio, case):
     """Sichani, Enblom & Berg (2016) report FaStrip's creep forces closer to the exact theory than FASTSIM's, the
     largest gain with lateral creepage and spin together: the largest error over the curve is smaller for FaStrip in
-    pure xi and eta at a/b = 0.2, 1, 5 and with spin adding to eta at a/b = 1 and 5 (measured on the circle: xi FASTSIM
+    pure xi and eta at a/b = 0.2, 1, 5 and with spin adding to eta at a/b = 0.5, 1, 5 (measured on the circle: xi FASTSIM
     5.8 %, FaStrip 0.8 %; eta + phi 22 % and 1.9 %). Not where FaStrip's strips meet spin across a wide contact:
     a/b = 0.2 with eta + phi FASTSIM is the closer (docs/creep_fidelity.md). FASTSIM's error stays in the 5-25 % the
     literature quotes for it without spin."""
