@@ -12,7 +12,8 @@ the slip direction along the strip). Steady rolling only (the strip theory is a 
 the slip zone is FASTSIM's, zero in the stick zone. Kalker's convention (solver.creep.kalker). Units: mm, N, MPa.
 
 Compared with FASTSIM it keeps the half-space's traction shape in the stick zone (no parabolic bound is needed to get
-the forces right) and the elliptical bound; strips whose spin parameter |Phi| reaches 1 slide entirely.
+the forces right) and the elliptical bound. A strip whose spin parameter |Phi| exceeds 1 slides entirely unless its
+lateral creepage opposes the spin enough to leave a stick zone (`_kernels._stick_shift`).
 """
 from __future__ import annotations
 
