@@ -7,12 +7,11 @@ The scene's [rolling] creepages are replaced by a range of the one given with --
 values geometrically from 0.02 to --max times its saturation creepage (cases.run.creep_curve), on each model given
 with --fidelity (repeatable: bem, fastsim, fastrip, drawn side by side; default the scene's [solver] fidelity, or
 bem). Writes DIR/<scene>_creep_<of>.csv (the exact theory; <scene>_creep_<of>_<model>.csv for a fast model) and
-the figure .png/.pdf (default DIR: creep/ in the current folder) and prints their paths; the API function is
-rollcontact.creep_curve. Exit codes: 0 written, 2 bad input (no [rolling], coupled materials, a file exists).
+the figure .png/.pdf (default DIR: creep/ in the current folder) and prints their paths. Exit codes: 0 written, 2
+bad input (the scene has no [rolling] or a transient one, coupled materials, a file exists), 1 a file that could
+not be written. Over `rollcontact.creep_curve` (cases.run.creep_curve).
 """
 from __future__ import annotations
-
-from pathlib import Path
 
 
 def register(subparsers):
@@ -40,13 +39,6 @@ def register(subparsers):
 
 def creep_curve_handler(args) -> int:
     from rollcontact.cases import api
-    scene = api.load_scene(args.scene, args.overrides)
-    report = api.creep_curve(scene, args.of, points=args.points, max=args.max, fidelity=args.fidelity,
-                             output=args.output, overwrite=args.overwrite)
-    first = report["tables"][0]
-    models = ", ".join(f"{t.fidelity} {sum(r['cpu_time'] for r in t.rows):.3g} s CPU" for t in report["tables"])
-    print(f"{args.points} creepages of {args.of} in {report['seconds']:.2f} s ({models}); saturation creepage "
-          f"{first.saturation:.6g}{' 1/mm' if args.of == 'phi' else ''}")
-    for p in report["paths"]:
-        print(Path(p).resolve())
+    print(api.creep_curve(args.scene, of=args.of, points=args.points, max_ratio=args.max, fidelity=args.fidelity,
+                          overrides=args.overrides, output=args.output, overwrite=args.overwrite).report())
     return 0

@@ -41,6 +41,7 @@ from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.creep_transient import run_transient
 from rollcontact.cases.run.fidelity import NAMES, choose_fidelity
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces
+from rollcontact.cases.run.viscoelastic import steady_outputs, steady_visco
 from rollcontact.cases.scene.keys import FAST_FIDELITIES
 from rollcontact.cases.scene.scene import Scene
 
@@ -60,12 +61,13 @@ def run_creep(scene: Scene, *, progress=None) -> RunResult:
         if choice.model in FAST_FIDELITIES:
             return _fast_steady(scene, grid, choice, t_start, progress)
         pair = scene.material_pair
-        op = scene_operator(scene, grid)
+        visco = steady_visco(scene, grid) if scene.viscoelastic else None
+        op = scene_operator(scene, grid) if visco is None else visco.operator
         if progress:
             progress(f"steady rolling: grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = "
                      f"{grid.dy} mm, contact-fixed, x along the rolling direction {scene.rolling.direction} deg), "
                      f"coupling {'on' if op.coupled else 'off'}")
-        state = solve_scene(scene, grid, op, pair)
+        state = solve_scene(scene, grid, op, pair, visco)
     except RollcontactError as exc:
         return RunResult(scene_toml=scene.to_toml(), status="failed", error=f"{type(exc).__name__}: {exc}",
                          x=grid.x, y=grid.y, summary={"state": "failed", "wall_time": time.perf_counter() - t_start,
@@ -77,7 +79,10 @@ def run_creep(scene: Scene, *, progress=None) -> RunResult:
     if op.coupled:
         u += op.tangential_from_pressure(normal.pressure)
     counts = dict(tangential=steady.sweeps, outer=outer, residual=max(normal.residual, steady.change))
-    return _result(scene, grid, normal, steady, u, counts, creep, choice.summary(), time.perf_counter() - t_start)
+    extra = choice.summary()
+    if visco is not None:                 # docs/viscoelastic.md: the forward lean of the pressure and its cost
+        extra.update(steady_outputs(visco, grid, normal.pressure, tau_sub, normal.force))
+    return _result(scene, grid, normal, steady, u, counts, creep, extra, time.perf_counter() - t_start)
 
 
 def _fast_steady(scene, grid, choice, t_start, progress):
@@ -125,9 +130,9 @@ def _result(scene, grid, normal, steady, u, counts, creep, extra, wall):
                    stick_fraction=float(steady.stick.sum() / steady.contact.sum()), a=a, b=b,
                    p0=float(np.max(normal.pressure)), nx=grid.nx, ny=grid.ny, elements=grid.size, steps=1,
                    steps_planned=1, iterations=int(history["iterations"][0]), wall_time=wall)
-    summary.update(extra)
     if scene.speed is not None:
         summary["speed"] = scene.speed
+    summary.update(extra)
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=fields, field_steps=stored, summary=summary, version=version())
 
