@@ -266,6 +266,38 @@ def print_tables(table, example):
         print(f"| {label} | {fy:.5g} | {mz:.5g} | {beside} | {diff} |")
 
 
+def print_auto_tables(mdr_map):
+    """The page's `auto` numbers: the MDR map's u_sd errors, and both held-out sets against the maps' predictions
+    (how many fast models or MDR runs `auto` takes per request; the largest measured / predicted)."""
+    from rollcontact.solver.fastsim.error_map import load_error_map
+    from rollcontact.solver.mdr.error_map import load_mdr_map
+    ax = mdr_map["axes"]
+    print("\n| alignment | w | " + " | ".join(f"f_t = {f:g}" for f in ax["f_t"]) + " |")
+    print("|---" * (len(ax["f_t"]) + 2) + "|")
+    for angle, plane in zip(ax["angle"], mdr_map["errors"]):
+        for w, row in zip(ax["w"], plane):
+            cells = " | ".join("-" if v is None else f"{100 * v:.1f}" for v in row)
+            print(f"| {angle:g} deg | {w:g} | {cells} |")
+    emap, mmap = load_error_map(), load_mdr_map()
+    held = load_json(ROOT / "tests" / "solver" / "data" / "fastsim_held_out.json")
+    for key in ("rows", "rows_fine"):
+        worst, taken = 0.0, {}
+        for row in held[key]:
+            predicted = {m: emap.predict(m, row["ratio"], row["nu"], row["xi_hat"], row["eta_hat"], row["phi_hat"])
+                         for m in emap.models}
+            worst = max([worst] + [row[m] / p for m, p in predicted.items() if p])
+            for request in (0.02, 0.05, 0.1, 0.2):
+                fast = any(p is not None and p <= request for p in predicted.values())
+                taken[request] = taken.get(request, 0) + fast
+        print(f"held-out rolling ({key}, {len(held[key])} scenes): largest measured / predicted {worst:.3f}; a fast "
+              f"model taken at requests 2 / 5 / 10 / 20 %: {' / '.join(str(taken[r]) for r in sorted(taken))}")
+    rows = load_json(ROOT / "tests" / "cases" / "data" / "mdr_held_out.json")["rows"]
+    pairs = [(r["error"], mmap.predict(dict(angle=r["angle"], w=r["w"], f_t=r["f_t"]))) for r in rows]
+    finite = [(e, p) for e, p in pairs if p is not None and math.isfinite(p)]
+    print(f"held-out shakedown ({len(rows)} scenes): {len(finite)} with a finite prediction, largest measured / "
+          f"predicted {max(e / p for e, p in finite):.3f}")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("-o", "--output", default="results/creep_fidelity", help="folder for the PNG and the JSON")
@@ -290,6 +322,7 @@ def main(argv=None):
                 seconds_per_case=creep_map["seconds_per_case"], mdr_seconds_per_run=mdr_map["seconds_per_run"])
     (out / "creep_fidelity.json").write_text(json.dumps(data, indent=1) + "\n")
     print_tables(table, example)
+    print_auto_tables(mdr_map)
     print((out / "creep_fidelity.png").resolve())
     return 0
 
