@@ -6,17 +6,15 @@ it may climb to z = 0) and
 on the surface (a 1e-4 a scan of y = 0, the edges x = -a, +a taken 1e-9 a below the surface), and the friction
 coefficient at which the surface maximum overtakes the one below (Brent's method, 1e-6). Then the same maxima on the
 default grid (a/dx = 12, cell-averaged Hertz pressure; depths 0 ... a in steps of a/100) from bem.subsurface, beside
-Hamilton's at the same cell centres. JSON to benchmarks/results/hamilton_sliding.json.
+Hamilton's at the same cell centres. JSON to DIR/hamilton_sliding.json (-o DIR, default results/benchmarks/).
 """
 import argparse
-import json
-import os
 from pathlib import Path
-import time
 
 import numpy as np
 from scipy.optimize import brentq, minimize
 
+import _record
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.subsurface import SubsurfaceStresses, invariants
 from rollcontact.solver.hamilton import hamilton_stresses
@@ -82,7 +80,7 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--mu", type=float, nargs="+", default=[0.0, 0.1, 0.2, 0.3, 0.4, 0.5],
                         help="friction coefficients (default 0 0.1 0.2 0.3 0.4 0.5)")
-    parser.add_argument("--out", default=str(HERE / "results" / "hamilton_sliding.json"), help="JSON output")
+    _record.add_output(parser)
     args = parser.parse_args(argv)
     rows = []
     for mu in args.mu:
@@ -100,10 +98,8 @@ def main(argv=None):
     switches = {name: switch(name) for name in ("von_mises", "tresca")}
     print(f"the surface maximum overtakes the one below at mu = {switches['von_mises']:.4f} (von Mises), "
           f"{switches['tresca']:.4f} (Tresca)")
-    result = {"date": time.strftime("%Y-%m-%d"), "load": os.getloadavg()[0], "nu": NU, "rows": rows,
-              "switch_mu": switches}
-    Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {args.out}")
+    result = {"nu": NU, "rows": rows, "switch_mu": switches}
+    _record.write("hamilton_sliding", result, args.output)
 
 
 if __name__ == "__main__":

@@ -1,8 +1,8 @@
 """Mindlin-Deresiewicz cycles on the paper's grid: the cost of one period of an oscillating tangential force
 without rolling, and its accuracy against the closed forms (theory.md §11.2).
 
-    .venv/bin/python benchmarks/oscillating_loads.py [--repeats 5] [--periods 4] [--out benchmarks/results/oscillating_loads.json]
-    .venv/bin/python benchmarks/oscillating_loads.py --accuracy [--out benchmarks/results/oscillating_loads_accuracy.json]
+    .venv/bin/python benchmarks/oscillating_loads.py [--repeats 5] [--periods 4] [-o DIR]    # DIR/oscillating_loads.json
+    .venv/bin/python benchmarks/oscillating_loads.py --accuracy [-o DIR]      # DIR/oscillating_loads_accuracy.json
 
 The paper scene (`cases.scene.default_scene`: its materials, Fn, mu, dx = 0.2 mm) with motion.w = 0, load.ft = 0
 and load.ft_amplitude = x for x = 0.3, 0.6, 0.9 (Ft = x mu Fn sin(2 pi k/24), 24 steps per period, the default),
@@ -28,14 +28,12 @@ the 3-D U against the 1-D MDR model with per-spring memory (max |U_3D - U_MDR| /
 period of both (theory §11.3); (3) the same with rolling at w = 0.23, both settings, where the MDR is not exact.
 """
 import argparse
-import json
-import os
 from pathlib import Path
 import statistics
-import time
 
 import numpy as np
 
+import _record
 from rollcontact.cases import api
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 
@@ -121,16 +119,12 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per amplitude (median; default 5)")
     parser.add_argument("--periods", type=int, default=4, help="periods per run (default 4)")
-    parser.add_argument("--out", default=str(HERE / "results" / "oscillating_loads.json"), help="JSON output")
+    _record.add_output(parser)
     parser.add_argument("--accuracy", action="store_true", help="the accuracy tables instead of the timing")
     args = parser.parse_args(argv)
     if args.accuracy:
         md, hist = accuracy_tables()
-        out = args.out if args.out != parser.get_default("out") else str(HERE / "results" /
-                                                                           "oscillating_loads_accuracy.json")
-        Path(out).write_text(json.dumps({"date": time.strftime("%Y-%m-%d"), "mindlin_deresiewicz": md,
-                                         "mdr": hist}, indent=1) + "\n")
-        print(f"written to {out}")
+        _record.write("oscillating_loads_accuracy", {"mindlin_deresiewicz": md, "mdr": hist}, args.output)
         return
     scenes = {x: api.load_scene(overrides={"motion.w": 0, "load.ft": 0, "load.ft_amplitude": x,
                                            "motion.periods": args.periods, "output.fields": "none"})
@@ -173,9 +167,7 @@ def main(argv=None):
               f"{row['tangential_it_per_step']:.1f}, floor {floor:.3f} s, wall/floor {row['wall_over_floor']:.2f}; "
               f"loop max|U - U_MD|/U* = {100 * loop:.3f} %, work per period {row['dissipation_per_period']:.5g} N mm "
               f"({100 * work:+.2f} % against the closed form)", flush=True)
-    result = {"date": time.strftime("%Y-%m-%d"), "repeats": args.repeats, "load": os.getloadavg()[0], "rows": rows}
-    Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {args.out}")
+    _record.write("oscillating_loads", {"repeats": args.repeats, "rows": rows}, args.output)
 
 
 if __name__ == "__main__":
