@@ -1,7 +1,7 @@
 """Transient rolling on the world-fixed grid (solver.creep.world) against the steady state: forces against the
 rolled distance, and the time per step (theory.md §6, §11.5; docs/creep_rolling.md, "Transient on the world grid").
 
-    .venv/bin/python benchmarks/creep_transient.py [--n 41 61] [--lengths 8] [--initial rest cattaneo] [-o DIR]
+    .venv/bin/python benchmarks/creep_transient.py [--quick] [--n 41 61] [--lengths 8] [--initial rest cattaneo] [-o DIR]
 
 Steel on steel (E = 210 GPa, nu = 0.28), a sphere R = 40 mm under Fn = 1000 N (Hertz a = 0.641 mm), mu = 0.3,
 xi = 5e-4, eta = 2e-4, phi = 1e-3 1/mm (partial slip, |F| = 0.29 mu Fn), n elements across the contact diameter
@@ -67,7 +67,10 @@ def main():
     ap.add_argument("--n", type=int, nargs="+", default=[41, 61])
     ap.add_argument("--lengths", type=int, default=8)
     ap.add_argument("--initial", nargs="+", default=["rest"])
+    ap.add_argument("--quick", action="store_true", help="n = 41 from rest over one contact length")
     args = ap.parse_args()
+    if args.quick:
+        args.n, args.lengths, args.initial = [41], 1, ["rest"]
     results = []
     for n in args.n:
         for initial in args.initial:
