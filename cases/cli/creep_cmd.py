@@ -4,7 +4,8 @@
 
 The scene's [rolling] creepages are replaced by a range of the one given with --of (the others zero): --points
 values geometrically from 0.02 to --max times its saturation creepage (cases.run.creep_curve). Writes
-DIR/<scene>_creep_<of>.csv and .png/.pdf (default DIR: creep/ in the current folder) and prints their paths.
+DIR/<scene>_creep_<of>.csv and .png/.pdf (default DIR: results/creep/ in the current folder, which git ignores) and
+prints their paths.
 Exit codes: 0 written, 2 bad input (the scene has no [rolling], coupled materials, a file exists).
 """
 from __future__ import annotations
@@ -27,7 +28,8 @@ def register(subparsers):
     p.add_argument("--max", type=float, default=4.0, help="largest creepage / saturation creepage (default 4)")
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override a scene key (repeatable)")
-    p.add_argument("-o", "--output", default="creep", help="output folder (default: creep/)")
+    p.add_argument("-o", "--output", default=str(Path("results") / "creep"),
+                   help="output folder (default: results/creep/)")
     p.add_argument("--overwrite", action="store_true", help="replace files that exist")
     p.set_defaults(func=creep_curve_handler)
     return p
