@@ -6,7 +6,8 @@ chooses (-o OUT, default results/<page>/; nothing is written anywhere else unles
 the page's tables to OUT/tables.md and its figures to OUT/figures/ (or --figures DIR), and then compares the tables
 with the page: every table of the page between
 
-    <!-- table NAME: tolerance 0.0005 -->        (absolute; or "tolerance 1 %": relative)
+    <!-- table NAME: tolerance 0.0005 -->        (absolute; "tolerance 1 %": relative; "tolerance 1 digit": one
+                                                  unit of the last digit the page prints)
     | ... |
     <!-- end table -->
 
@@ -34,7 +35,7 @@ RC = Path(sys.executable).parent / "rollcontact"
 SKIPPED = "…"
 
 _NUMBER = re.compile(r"[-+−]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
-_BLOCK = re.compile(r"<!-- table (?P<name>[\w-]+)(?::\s*(?P<spec>[^>]*?))?\s*-->\n(?P<body>.*?)\n<!-- end table -->",
+_BLOCK = re.compile(r"<!-- table (?P<name>[\w-]+)(?::\s*(?P<spec>[^>]*?))?\s*-->\n(?P<body>.*?)\n?<!-- end table -->",
                     re.S)
 
 
@@ -136,18 +137,27 @@ def parse(text: str) -> dict:
     return out
 
 
-def tolerance(spec: str) -> tuple[float, bool]:
-    """(value, relative) from a marker's 'tolerance 0.0005' or 'tolerance 1 %' (no tolerance: exact)."""
-    m = re.search(r"tolerance\s+([0-9.eE+-]+)\s*(%?)", spec)
+def tolerance(spec: str) -> tuple[float, str]:
+    """(value, kind) from a marker's 'tolerance 0.0005' (kind 'abs'), 'tolerance 1 %' ('rel') or 'tolerance 1 digit'
+    ('digit': that many units of the last digit the page prints); no tolerance: exact."""
+    m = re.search(r"tolerance\s+([0-9.eE+-]+)\s*(%|digits?)?", spec)
     if not m:
-        return 0.0, False
+        return 0.0, "abs"
     value = float(m.group(1))
-    return (value / 100, True) if m.group(2) else (value, False)
+    kind = {"%": "rel", None: "abs"}.get(m.group(2), "digit")
+    return (value / 100 if kind == "rel" else value), kind
+
+
+def last_digit(text: str) -> float:
+    """One unit of the last digit of a printed number: '0.045' -> 0.001, '3.2e-04' -> 1e-05, '12' -> 1."""
+    mantissa, _, exponent = text.replace("−", "-").lower().partition("e")
+    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    return 10.0 ** (-decimals + (int(exponent) if exponent else 0))
 
 
 def numbers(cell: str) -> tuple[list, str]:
-    """The numbers of a cell and its text with the numbers taken out."""
-    found = [float(x.replace("−", "-")) for x in _NUMBER.findall(cell)]
+    """The numbers of a cell as (value, printed text), and the cell's text with the numbers taken out."""
+    found = [(float(x.replace("−", "-")), x) for x in _NUMBER.findall(cell)]
     return found, " ".join(_NUMBER.sub("#", cell).split())
 
 
@@ -183,7 +193,7 @@ def compare(page_text: str, tables_text: str) -> Report:
             continue
         spec, want = page[name]
         _, got = ours[name]
-        tol, relative = tolerance(spec)
+        tol, kind = tolerance(spec)
         if len(want) != len(got) or any(len(a) != len(b) for a, b in zip(want, got)):
             report.problems.append(f"table {name}: {len(got)} rows on the run, {len(want)} on the page "
                                    "(or a row of another length)")
@@ -199,12 +209,17 @@ def compare(page_text: str, tables_text: str) -> Report:
                 if tw != tg or len(nw) != len(ng):
                     report.problems.append(f"{where}: page {w!r}, run {g!r}")
                     continue
-                for a, b in zip(nw, ng):
-                    diff = abs(a - b) / (abs(a) or 1.0) if relative else abs(a - b)
+                for (a, text), (b, _) in zip(nw, ng):
+                    if kind == "rel":
+                        diff, limit = abs(a - b) / (abs(a) or 1.0), tol
+                    elif kind == "digit":
+                        diff, limit = abs(a - b) / last_digit(text), tol
+                    else:
+                        diff, limit = abs(a - b), tol
                     report.compared += 1
                     if diff > report.worst[0]:
                         report.worst = (diff, where)
-                    if diff > tol * (1 + 1e-9) + 1e-15:
+                    if diff > limit * (1 + 1e-9) + 1e-15:
                         report.problems.append(f"{where}: page {w!r}, run {g!r} (tolerance {spec.strip()})")
     return report
 

@@ -72,17 +72,40 @@ def runs(study, s):
     return rows, rows_mdr, brackets
 
 
+def grid_check(study, s, bracket):
+    """The perpendicular runs on the a/24 grid (40 periods) at both ends of the a/12 bracket of shape s."""
+    import rollcontact
+    scene = rollcontact.load_scene(DOCS / "shapes" / f"{s}.toml")
+    dx = round(scene.normal_reference.a / 24, 2)
+    if bracket is None:
+        return [SHAPES[s], f"{dx:.2f} mm", SKIPPED, SKIPPED]
+    cells = []
+    for f in bracket:
+        path = study.out / f"{s}_a24_ft{f:.4f}.h5"
+        if not path.exists():
+            study.rc("run", DOCS / "shapes" / f"{s}.toml", "--set", f"load.ft={f:.4f}", "--set", "motion.angle=90",
+                     "--set", f"grid.dx={dx}", "--set", "motion.periods=40", "-o", path, "-q")
+        r = rollcontact.read_run(path).summary
+        cells.append(f"f_t = {f:.4f}: " + (f"shakedown (u_sd = {r['u_sd']:.4f})" if r["state"] == "shakedown" else
+                                           f"ratcheting (Δu = {r['du']:.4f})" if r["state"] == "ratcheting" else
+                                           r["state"]))
+    return [SHAPES[s], f"{dx:.2f} mm", *cells]
+
+
 def main(argv=None) -> int:
     study = Study.from_command_line("shapes", __doc__, argv)
     import rollcontact
     scene_table(study)
     limits, usd, du = [], {f: [] for f in FT}, {f: [] for f in (0.6, 0.7, 0.8)}
+    brackets_perp = {}
     for s in SHAPES:
         scene = rollcontact.load_scene(DOCS / "shapes" / f"{s}.toml")
         tg = scene.tangential_reference
         f_lim, u_lim = tg.limit(W * scene.contact_radius)
         computed = not study.quick or s == "cone"
         rows, rows_mdr, brackets = runs(study, s) if computed else ({}, {}, {})
+        if 90.0 in brackets:
+            brackets_perp[s] = brackets[90.0]
         cells = [f"[{brackets[a][0]:.4f}, {brackets[a][1]:.4f}]" if a in brackets else SKIPPED for a in (0.0, 90.0)]
         limits.append([SHAPES[s], *cells, f"{f_lim:.4f}", f"{u_lim:.3f}"])
         for f in FT:
@@ -109,6 +132,8 @@ def main(argv=None) -> int:
     study.table("usd", ["f_t", *(f"{SHAPES[s]} par / perp / MDR" for s in SHAPES)],
                 [[f"{f:.1f}", *usd[f]] for f in FT])
     study.table("du", ["f_t", *SHAPES.values()], [[f"{f:.1f}", *du[f]] for f in du])
+    study.table("grid_check", ["profile", "dx (a/24)", "lower end of the bracket: state", "upper end: state"],
+                [grid_check(study, s, brackets_perp.get(s)) for s in SHAPES])
     if not study.quick:
         flat = sorted((study.out / "flat_rounded_sweep").glob("ft=0.5_angle=90__*.h5"))[0]
         study.rc("plot", flat, "-o", study.out / "plots", "--overwrite", capture=True)

@@ -1,0 +1,50 @@
+"""Every study page under docs/ is reproduced by its script: docs/scripts/<page>.py --quick computes a few cells of
+each of the page's tables with the page's own settings, into a temporary folder, and they must equal the page's
+within the tolerance the page states (docs/scripts/_study.py compares them). Run as written without --quick, the
+same script reproduces every table and figure of the page."""
+import importlib.util
+from pathlib import Path
+import re
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SCRIPTS = ROOT / "docs" / "scripts"
+STUDIES = sorted(p.stem for p in SCRIPTS.glob("*.py") if not p.stem.startswith("_") and p.stem != "reference")
+
+
+def _load(name):
+    spec = importlib.util.spec_from_file_location(f"docs_script_{name}", SCRIPTS / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_every_study_page_names_its_script_and_every_script_has_its_page():
+    pages = {p.stem for p in (ROOT / "docs").glob("*.md")} - {"theory", "scene_reference", "hdf5_schema"}
+    assert set(STUDIES) == pages
+    for name in STUDIES:
+        text = (ROOT / "docs" / f"{name}.md").read_text()
+        assert f".venv/bin/python docs/scripts/{name}.py" in text, name
+        assert re.search(r"<!-- table \w+", text), f"docs/{name}.md has no table marked for the comparison"
+
+
+@pytest.mark.parametrize("name", STUDIES)
+def test_the_quick_run_of_the_page_script_reproduces_the_page(name, tmp_path, capsys):
+    study = _load(name)
+    code = study.main(["--quick", "-o", str(tmp_path / name)])
+    out = capsys.readouterr().out
+    assert code == 0, out[-3000:]
+    assert "numbers compared" in out and " 0 numbers compared" not in out, out[-1000:]
+    assert (tmp_path / name / "tables.md").exists()
+
+
+def test_the_comparison_finds_a_changed_number_and_a_changed_state(tmp_path):
+    """The comparison itself: a number outside the page's tolerance, or another state, is reported."""
+    study = _load("_study")
+    page = ("<!-- table t: tolerance 0.001 -->\n| a | b |\n|---|---|\n| 0.5000 | shakedown |\n<!-- end table -->\n")
+    ok = study.render({"t": (["a", "b"], [["0.5005", "shakedown"]])})
+    assert study.compare(page, ok).ok
+    assert not study.compare(page, study.render({"t": (["a", "b"], [["0.5020", "shakedown"]])})).ok
+    assert not study.compare(page, study.render({"t": (["a", "b"], [["0.5000", "ratcheting"]])})).ok
+    assert study.compare(page, study.render({"t": (["a", "b"], [[study.SKIPPED, study.SKIPPED]])})).ok
