@@ -134,29 +134,6 @@ def test_unreadable_or_invalid_files_give_scene_errors(tmp_path):
         Scene.from_toml(f)
 
 
-def test_readme_scene_table_states_the_defaults_of_cases_scene():
-    """Every `key = value` in the README's defaults column is the dataclass default; every literal default
-    (not None, not derived) is stated there."""
-    import re
-    from dataclasses import fields as dc_fields
-    from pathlib import Path
-    from rollcontact.cases.scene.scene import SECTIONS, _parse_value
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
-    rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `\[(\w+)\]` \|.*\| (.*) \|$", readme, re.M)}
-    assert set(rows) == set(SECTIONS)
-    for sec, klass in SECTIONS.items():
-        stated = {k: _parse_value(v) for k, v in re.findall(r"`(\w+) = ([^`]+)`", rows[sec])}
-        for f in dc_fields(klass):
-            default = f.default_factory() if callable(f.default_factory) else f.default
-            if f.name in ("ft", "w"):                     # None: neither ft nor Ft (w nor W) given, i.e. 0
-                assert default is None and stated[f.name] == 0
-            elif f.name in stated:
-                assert stated[f.name] == default, (sec, f.name, stated[f.name], default)
-            elif default is not None:
-                raise AssertionError(f"README scene table: [{sec}] {f.name} = {default!r} not stated")
-        assert set(stated) <= {f.name for f in dc_fields(klass)}, (sec, stated)
-
-
 def test_w_and_W_share_one_range():
     """w = W/a was limited to [0, 1] while W = 10 mm (w = 2.09) ran: both are open above now (the step limit
     bounds them)."""
