@@ -182,7 +182,7 @@ def run_usd(angle, dx, dW, tol, repeats):
     times, out = [], None
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(max(1, repeats)):
-            out = run_scene(scene, Path(tmp) / "run.h5")
+            out = run_scene(scene, Path(tmp) / "run.h5", overwrite=True)
             times.append(out.wall_time)
     d = out
     s, h = d.summary, d.history
