@@ -5,6 +5,7 @@ same script reproduces every table and figure of the page."""
 import importlib.util
 from pathlib import Path
 import re
+import sys
 
 import pytest
 
@@ -16,6 +17,7 @@ STUDIES = sorted(p.stem for p in SCRIPTS.glob("*.py") if not p.stem.startswith("
 def _load(name):
     spec = importlib.util.spec_from_file_location(f"docs_script_{name}", SCRIPTS / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module              # dataclasses look their module up there
     spec.loader.exec_module(module)
     return module
 
