@@ -25,7 +25,7 @@ def register(subparsers):
     p.add_argument("--max", type=float, default=4.0, help="largest creepage / saturation creepage (default 4)")
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override a scene key (repeatable)")
-    p.add_argument("-o", "--output", default=str(Path("results") / "creep"),
+    p.add_argument("-o", "--output", default="results/creep",
                    help="output folder (default: results/creep/)")
     p.add_argument("--overwrite", action="store_true", help="replace files that exist")
     p.set_defaults(func=creep_curve_handler)

@@ -58,15 +58,6 @@ SUMMARY_UNITS = {
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
     "speed": "mm/s", "step_time": "s",
 }
-#: /summary of a [rolling] run (cases.run.creep_run, creep_transient) adds, in Kalker's convention (forces and moment
-#: on the rolling body 1, docs/theory.md §7.3): the creepages and the forces, the linear theory beside them, and for a
-#: transient run its steady state; `a`, `b` are then the semi-axes along and across the rolling direction.
-CREEP_SUMMARY_UNITS = {
-    "mode": "-", "xi": "-", "eta": "-", "phi": "1/mm", "direction": "deg", "forces_prescribed": "-", "F_x": "N",
-    "F_y": "N", "M_z": "N mm", "F_x_linear": "N", "F_y_linear": "N", "mu_Fn": "N", "stick_fraction": "-", "b": "mm",
-    "initial": "-", "distance": "mm", "step": "mm", "F_x_steady": "N", "F_y_steady": "N", "M_z_steady": "N mm",
-    "xi_steady": "-", "eta_steady": "-", "p0_steady": "MPa", "world_grid": "-", "time_per_step": "s", "cpu_time": "s",
-}
 #: Summary values of a scene with viscoelastic bodies (docs/viscoelastic.md): pressure_centroid_x (mm, at the last
 #: step, or the steady state's), rolling_resistance_moment = Fn pressure_centroid_x (N mm), the viscous work of the last
 #: complete period (oscillating scenes, N mm) or the power dissipated (steady rolling, and a transient's last step, W);

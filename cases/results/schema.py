@@ -7,7 +7,9 @@ p and tau act on the substrate, u is the substrate relative to the sphere, U the
 from __future__ import annotations
 
 from rollcontact.cases.results.run_result import (CREEP_HISTORY_UNITS, CREEP_SUMMARY_UNITS, FIELD_UNITS,
-                                                   HISTORY_UNITS, SUBSURFACE_UNITS, SUMMARY_UNITS)
+                                                   HISTORY_UNITS, PATCH_FIELD_UNITS, PATCH_UNITS, SUBSURFACE_UNITS,
+                                                   SUMMARY_UNITS, TIME_HISTORY_UNITS, VISCO_FIELD_UNITS,
+                                                   VISCO_HISTORY_UNITS)
 
 #: / attributes: name -> (unit, meaning)
 ROOT_ATTRIBUTES = {
@@ -42,6 +44,9 @@ HISTORY = {
     "M_z": "[rolling] transient: moment on the rolling sphere about the contact centre (Kalker's convention)",
     "xi": "[rolling] transient: longitudinal creepage of the step", "eta": "[rolling] transient: lateral creepage",
     "cpu_time": "[rolling] transient: process CPU time of the step",
+    "time": "a scene with a speed: the end of the step (step n ends at n step_time)",
+    "pressure_centroid_x": "viscoelastic bodies: ∫ x p dA / Fn along the rolling direction from the body's lowest point",
+    "viscous_dissipation": "viscoelastic bodies: the work of the viscous dashpots in the step",
 }
 
 FIELDS = {
@@ -51,6 +56,10 @@ FIELDS = {
     "slip_x": "slip of the step, substrate relative to the sphere, x", "slip_y": "slip of the step, y",
     "u_x": "tangential displacement of the substrate relative to the sphere, x", "u_y": "the same, y",
     "region": "int8: 0 exterior, 1 stick, 2 slip",
+    **{f"q_{c}{i}": f"viscoelastic body {i}: the memory state of {name} (the traction filtered by the body's "
+                    "exponential memory; a restart continues from it)"
+       for i in (1, 2) for c, name in (("p", "p"), ("x", "tau_x"), ("y", "tau_y"))},
+    "gap": "[wheelrail] patch: the undeformed distance h(x, s) of wheel and rail along the normal",
 }
 
 SUBSURFACE = {
@@ -96,7 +105,43 @@ SUMMARY = {
     "xi_steady": "transient: the steady state's xi (prescribed forces)", "eta_steady": "transient: the steady eta",
     "p0_steady": "transient: the steady state's peak pressure", "world_grid": "transient: the world grid (ny, nx)",
     "time_per_step": "transient: mean wall time per rolling step", "cpu_time": "transient: process CPU time",
+    "pressure_centroid_x": "viscoelastic bodies: the pressure centroid along the rolling direction (last step, or the "
+                           "steady state's)",
+    "rolling_resistance_moment": "viscoelastic bodies: Fn pressure_centroid_x",
+    "viscous_dissipation_per_period": "viscoelastic bodies: the viscous work of the last complete period",
+    "viscous_power": "viscoelastic bodies: the power dissipated (steady rolling, a transient's last step)",
+    "pressure_centroid_x_steady": "viscoelastic transient: the steady state's pressure_centroid_x",
+    "rolling_resistance_moment_steady": "viscoelastic transient: the steady state's moment",
+    "viscous_power_steady": "viscoelastic transient: the steady state's power",
+    "n_patches": "[wheelrail]: contact patches found", "patch_y_rail": "[wheelrail] per patch: reference point, rail "
+    "profile coordinate", "patch_y_wheel": "per patch: reference point, wheel profile coordinate",
+    "patch_x": "per patch: x in the track frame", "patch_contact_angle": "per patch: contact angle",
+    "patch_rolling_radius": "per patch: the wheel's rolling radius", "patch_Fn": "per patch: normal force on the wheel",
+    "patch_Fx": "per patch: tangential force along x", "patch_Fy": "per patch: tangential force along s",
+    "patch_Mz": "per patch: moment about the normal", "patch_xi": "per patch: longitudinal creepage",
+    "patch_eta": "per patch: lateral creepage", "patch_phi": "per patch: spin", "patch_pmax": "per patch: peak pressure",
+    "patch_length": "per patch: extent along x", "patch_width": "per patch: extent along s",
+    "patch_penetration": "per patch: largest interpenetration of the undeformed surfaces",
+    "patch_angle_spread": "per patch: range of the rail's surface angle across the contact",
+    "F_track_x": "[wheelrail]: total force on the wheel, track frame x", "F_track_y": "the same, y",
+    "F_track_z": "the same, z (= Fz in balance)", "z_ws": "[wheelrail]: wheelset centre above its nominal height",
+    "lowering": "[wheelrail]: lowering beyond the first touch", "xi_nominal": "[wheelrail]: creepage at the nominal "
+    "rolling radius", "omega": "[wheelrail]: the wheelset's rotation (with a speed)", "side": "[wheelrail]: the rail",
+    "outer_iterations": "[wheelrail]: normal / tangential alternations of the vertical balance",
+    "patch_Fx_steady": "[wheelrail] transient: the steady patch_Fx", "patch_Fy_steady": "the steady patch_Fy",
+    "patch_Mz_steady": "the steady patch_Mz",
 }
+#: /patches/<k> attributes of a [wheelrail] run (docs/wheelrail.md): the patch's values
+PATCH = {"y_rail": "reference point, rail profile coordinate", "y_wheel": "reference point, wheel profile coordinate",
+         "x_track": "x in the track frame", "contact_angle": "contact angle", "rolling_radius": "the wheel's radius",
+         "Fn": "normal force", "Fx": "tangential force along x", "Fy": "tangential force along s",
+         "Mz": "moment about the normal", "xi": "longitudinal creepage", "eta": "lateral creepage", "phi": "spin",
+         "pmax": "peak pressure", "length": "extent along x", "width": "extent along s",
+         "penetration": "largest interpenetration", "angle_spread": "range of the surface angle", "dx": "element size x",
+         "dy": "element size s", "normal_iterations": "normal-solver products", "sweeps": "steady-solver sweeps",
+         "contact_elements": "elements in contact", "stick_elements": "sticking elements",
+         "Fx_steady": "transient: steady Fx", "Fy_steady": "transient: steady Fy", "Mz_steady": "transient: steady Mz",
+         "distance": "transient: distance rolled", "step": "transient: rolling step", "steps": "transient: steps"}
 
 
 def groups() -> list:
@@ -108,9 +153,12 @@ def groups() -> list:
     return [
         ("/", "attributes", [(k, u, d) for k, (u, d) in ROOT_ATTRIBUTES.items()]),
         ("/grid", "datasets", [(k, "mm", d) for k, d in GRID.items()]),
-        ("/history", "datasets", rows({**HISTORY_UNITS, **CREEP_HISTORY_UNITS}, HISTORY)),
-        ("/fields", "datasets", rows({"step": "-", **FIELD_UNITS}, FIELDS)),
+        ("/history", "datasets", rows({**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **TIME_HISTORY_UNITS,
+                                       **VISCO_HISTORY_UNITS}, HISTORY)),
+        ("/fields", "datasets", rows({"step": "-", **FIELD_UNITS, **VISCO_FIELD_UNITS}, FIELDS)),
         ("/subsurface", "datasets", rows({"z": "mm", "step": "-", **SUBSURFACE_UNITS}, SUBSURFACE)),
         ("/subsurface", "attributes", [(k, u, d) for k, (u, d) in SUBSURFACE_ATTRIBUTES.items()]),
         ("/summary", "attributes", rows({**SUMMARY_UNITS, **CREEP_SUMMARY_UNITS}, SUMMARY)),
+        ("/patches/<k>", "attributes", rows(PATCH_UNITS, PATCH)),
+        ("/patches/<k>/fields", "datasets", rows({**FIELD_UNITS, **PATCH_FIELD_UNITS}, FIELDS)),
     ]

@@ -23,6 +23,8 @@ MODES = {
     "mdr": "the same with solver.fidelity = \"mdr\": the 1-D spring model of the MDR (docs/theory.md §8.2)",
     "steady": "[rolling] mode = \"steady\": steady rolling with creepage and spin (docs/theory.md §11.5)",
     "transient": "[rolling] mode = \"transient\": rolling on the world-fixed grid from an initial state",
+    "wheelrail": "[wheelrail]: a wheel on a rail with measured profiles, the contact patches found by search "
+                 "(docs/wheelrail.md)",
 }
 ALL_MODES = tuple(MODES)
 #: The modes of each section's keys, unless a key says otherwise (its `modes`); a section not listed: all.
@@ -30,6 +32,7 @@ SECTION_MODES = {
     "load": ("oscillating", "mdr"),
     "motion": ("oscillating", "mdr"),
     "rolling": ("steady", "transient"),
+    "wheelrail": ("wheelrail",),
     "grid": ("oscillating", "steady", "transient"),
     "solver": ("oscillating", "steady", "transient"),
     "output": ("oscillating", "steady", "transient"),
@@ -41,6 +44,7 @@ SECTION_DOCS = {
     "load": "the normal force, the friction coefficient and the tangential load path",
     "motion": "the oscillating rolling: amplitude, direction relative to Ft, periods, step",
     "rolling": "rolling on with creepage and spin, steady or transient (excludes [motion] and a tangential load)",
+    "wheelrail": "a wheel on a rail: the profiles, the track, the wheelset's position, load and motion",
     "grid": "the boundary-element grid: element size and margin around the swept contact",
     "solver": "tolerances, budgets, model fidelity, threads and the normal-tangential coupling",
     "output": "which steps' surface fields the run file keeps",

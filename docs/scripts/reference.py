@@ -132,7 +132,8 @@ def hdf5_schema() -> str:
     for path, kind, rows in schema.groups():
         shape = {"/history": "one value per step", "/fields": "shape (stored steps, ny, nx)",
                  "/subsurface": "shape (computed steps, nz, ny, nx) for the stresses",
-                 "/grid": "the cell centres"}.get(path, "")
+                 "/grid": "the cell centres",
+                 "/patches/<k>/fields": "shape (1, ny, nx) on the patch's grid in its tangent plane"}.get(path, "")
         title = f"## `{path}` {kind}" + (f" ({shape})" if shape and kind == "datasets" else "")
         out += [title, "", "| name | unit | meaning |", "|---|---|---|"]
         out += [f"| `{name}` | {unit} | {_cell(text)} |" for name, unit, text in rows]

@@ -129,5 +129,5 @@ def test_the_commands_on_the_docs_pages_call_the_venv():
     for page in sorted((ROOT / "docs").glob("*.md")):
         for ln in page.read_text().splitlines():
             cmd = ln.strip()
-            if ln.startswith("    ") and re.match(r"(rollcontact|python3?|pip) ", cmd):
+            if ln.startswith("    ") and re.match(r"(rollcontact|python3?|pip) [\w./-]+(\s|$)", cmd):
                 raise AssertionError(f"{page.name}: {cmd!r} does not call .venv/bin/...")
