@@ -17,13 +17,14 @@ SUFFIXES = {".py", ".md", ".toml", ".sh", ".txt", ".cfg", ".ini", ".yml", ".yaml
 
 #: one reference: a section (with an optional item letter, "§2.2a") or a range of sections
 _SEC = r"§\s?\d+(?:\.\d+)?[a-z]?(?:\s?[-–]\s?(?:§\s?)?\d+(?:\.\d+)?)?"
-_PIT = r"P\d{1,2}(?:\s?[-–]\s?P?\d{1,2})?"
+_PIT = r"\bP(?:1[0-4]|[1-9])\b(?:\s?[-–]\s?P?\d{1,2})?"
 #: a group of references separated by commas, slashes or "and"
 GROUP = re.compile(rf"(?:{_SEC}|{_PIT})(?:(?:\s?[,/]\s?|\s(?:and|or)\s)(?:{_SEC}|{_PIT}))*")
-#: sources whose own sections a section sign may cite (the words just before the group)
-OTHER_SOURCES = re.compile(r"(seed|Johnson|Kalker|CONTACT|user guide|Popov|Hamilton|Love|Mindlin|Sect|paper|"
-                           r"Carslaw|Jaeger|Vollebregt|Hunter|Iwnicki|Polach|section|chapter|ch\.)(?:'s)?\W{0,3}(\d{4}\W{0,3})?$",
-                           re.I)
+#: sources whose own sections a section sign may cite (the words just before the group): a named work, an
+#: author-year citation ("Saad 2003, Iterative Methods ..., §9.3"), or another page of the repository ("docs/x.md, §3")
+OTHER_SOURCES = re.compile(r"((seed|Johnson|Kalker|CONTACT|user guide|Popov|Hamilton|Love|Mindlin|Sect|paper|"
+                           r"Carslaw|Jaeger|Vollebregt|Hunter|Iwnicki|Polach|section|chapter|ch\.)(?:'s)?\W{0,3}"
+                           r"(\d{4}\W{0,3})?|[A-Z][a-z]+\S* (et al\. )?\d{4}\b[^()§]*|\.md\W{0,3})$", re.I)
 
 
 def repository_files():
