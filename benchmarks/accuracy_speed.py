@@ -6,14 +6,14 @@ Three problems, each swept over the discretisation and the tolerance, error plot
 
 (a) Hertz normal contact of the seed sphere (R = 40 mm, Fn = 21.19 N, E* = 5.79985 MPa), square grid over
     +-1.25 a, a/dx = 6 ... 96, tol 1e-4 ... 1e-10. Error: relative error of the approach d against Hertz
-    (theory.md §7.1), and of the centre pressure against p0. Time: one cold `solve_normal` (median of
+    (docs/theory.md §7.1), and of the centre pressure against p0. Time: one cold `solve_normal` (median of
     --repeats, after a warm-up solve: FFTW planning and numba compilation excluded; operator set-up time is
     reported separately). Peers, if importable (the optional `bench` extra): tamaas (PolonskyKeerRey with its
     non-periodic "dcfft" operator) and ContactMechanics (FreeFFTElasticHalfSpace + constrained CG, pentol =
     tol d), on the same grids, the same tolerance number and in the same process, their approach taken from
     the pressure they return (d = mean over the contact of h + A p, our operator) resp. their offset.
 (b) Cattaneo-Mindlin, f_t = 0.5, same geometry but two identical bodies with nu = 0 (E1 = E2 = 2 E*): beta = 0
-    and nu = 0, the case in which Mindlin's shift is exact (theory.md §7.2, P10), so that the error against the
+    and nu = 0, the case in which Mindlin's shift is exact (docs/theory.md §7.2, P10), so that the error against the
     closed form goes to zero with dx. Error: relative error of the rigid shift U. Time: the cold
     `solve_tangential` (pressure from `solve_normal` on the same grid, tol 1e-10).
 (c) The shakedown displacement u_sd of the paper scene (f_t = 0.46, w = 0.23, 10 periods), perpendicular and

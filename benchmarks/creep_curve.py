@@ -1,4 +1,4 @@
-"""Speed of a creep-force curve of the steady rolling solver (solver.creep; theory.md §7.3, §11.5).
+"""Speed of a creep-force curve of the steady rolling solver (solver.creep; docs/theory.md §7.3, §11.5).
 
     .venv/bin/python benchmarks/creep_curve.py [--n 59 89 119] [--repeats 3] [-o DIR]
 

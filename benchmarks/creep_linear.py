@@ -1,4 +1,4 @@
-"""Accuracy of the steady rolling solver in the linear limit against Kalker's table (theory.md §7.3).
+"""Accuracy of the steady rolling solver in the linear limit against Kalker's table (docs/theory.md §7.3).
 
     .venv/bin/python benchmarks/creep_linear.py [--quick] [--n 21 41 81] [-o DIR]
 

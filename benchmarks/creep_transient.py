@@ -1,5 +1,5 @@
 """Transient rolling on the world-fixed grid (solver.creep.world) against the steady state: forces against the
-rolled distance, and the time per step (theory.md §6, §11.5; docs/creep_rolling.md, "Transient on the world grid").
+rolled distance, and the time per step (docs/theory.md §6, §11.5; docs/creep_rolling.md, "Transient on the world grid").
 
     .venv/bin/python benchmarks/creep_transient.py [--quick] [--n 41 61] [--lengths 8] [--initial rest cattaneo] [-o DIR]
 

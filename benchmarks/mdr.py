@@ -1,4 +1,4 @@
-"""Benchmark of the MDR fidelity level (solver.mdr, solver.mdr.bisection, solver.mdr.limits; theory.md §8).
+"""Benchmark of the MDR fidelity level (solver.mdr, solver.mdr.bisection, solver.mdr.limits; docs/theory.md §8).
 
 Run:  .venv/bin/python benchmarks/mdr.py [-o DIR]
 Writes DIR/mdr.json (default results/benchmarks/) and prints the Markdown tables of benchmarks/README.md "## MDR model".

@@ -1,6 +1,6 @@
 """Benchmark of the normal solver (solver/normal.py, NormCG) on the Hertz sphere of the seed's scene.
 
-Scene (theory.md §7.1): R = 40 mm, E1 = 206e3 MPa, nu1 = 0.3, E2 = 4.35 MPa, nu2 = 0.5, Fn = 21.19 N
+Scene (docs/theory.md §7.1): R = 40 mm, E1 = 206e3 MPa, nu1 = 0.3, E2 = 4.35 MPa, nu2 = 0.5, Fn = 21.19 N
 (a = 4.7857 mm, d = 0.572572 mm, p0 = 0.441756 MPa). Square grids of n^2 cells with dx chosen so that
 the contact diameter fills 65 % of the grid width, plus the paper's own grid (dx = 0.2 mm covering
 1.25 a). For each grid:
@@ -12,7 +12,7 @@ the contact diameter fills 65 % of the grid width, plus the paper's own grid (dx
   `inv`: one `op.normal_inverse`; `t/it / pair` = solve time / iterations / pair time (the whole solve,
   including the initial A p and any extra A p recomputations after large active-set changes, whose
   number is reported as `extra`);
-* errors against Hertz: approach, peak pressure, contact area (cells with p > 0, pitfall P11).
+* errors against Hertz: approach, peak pressure, contact area (cells with p > 0, docs/theory.md P11).
 
 Usage: .venv/bin/python benchmarks/normal_hertz.py [--quick] [--repeat N] [--sizes 64 128 ...] [-o DIR]
 Writes DIR/normal_hertz.json (default results/benchmarks/; the committed one: -o benchmarks/results) and prints a

@@ -1,5 +1,5 @@
 """Mindlin-Deresiewicz cycles on the paper's grid: the cost of one period of an oscillating tangential force
-without rolling, and its accuracy against the closed forms (theory.md §11.2).
+without rolling, and its accuracy against the closed forms (docs/theory.md §11.2).
 
     .venv/bin/python benchmarks/oscillating_loads.py [--quick] [--repeats 5] [--periods 4] [-o DIR]   # DIR/oscillating_loads.json
     .venv/bin/python benchmarks/oscillating_loads.py --accuracy [--quick] [-o DIR]   # DIR/oscillating_loads_accuracy.json
@@ -17,7 +17,7 @@ cache, FFTW wisdom), --repeats runs round robin; reported as medians:
 * accuracy of the last period: the largest |U - U_MD| over it relative to U(F*), and the frictional work of the
   period (/summary dissipation_per_period) against the Mindlin-Deresiewicz loop area
   4 mu Fn U0 [6/5 - x - x(1-x)^(2/3) - (6/5)(1-x)^(5/3)]; the paper's nu2 = 0.5 makes Mindlin's closed form a few
-  0.1 % off in U (pitfall P10), more in the loop area (docs/oscillating_loads.md).
+  0.1 % off in U (docs/theory.md P10), more in the loop area (docs/oscillating_loads.md).
 
 --accuracy instead: (1) the Mindlin-Deresiewicz cycle (2 periods of 24 steps, the second compared) on the
 scene's default grid for the amplitude (grid.dx left out: 4 elements across the slip annulus, at least a/12,
@@ -25,7 +25,7 @@ cases.scene.limits) and at dx = 0.4 / 0.2 / 0.1 mm (a/12, a/24, a/48) for the pa
 the same E* (where the closed form is exact), the loop error max |U - U_MD| / U(F*) and the frictional work of the
 cycle against the closed form; (2) four histories of varying Fn and Ft without rolling on the default grid,
 the 3-D U against the 1-D MDR model with per-spring memory (max |U_3D - U_MDR| / max |U_MDR|) and the work per
-period of both (theory §11.3); (3) the same with rolling at w = 0.23, both settings, where the MDR is not exact.
+period of both (docs/theory.md §11.3); (3) the same with rolling at w = 0.23, both settings, where the MDR is not exact.
 --accuracy --quick: only x = 0.6 on the default grid and the Mindlin-Deresiewicz history without rolling (seconds).
 """
 import argparse

@@ -1,4 +1,4 @@
-"""Benchmark: the seed's Fig. 8 sweep at paper resolution, and kappa fitted to it (seed Eq. 13, theory.md §8.4).
+"""Benchmark: the seed's Fig. 8 sweep at paper resolution, and kappa fitted to it (seed Eq. 13, docs/theory.md §8.4).
 
     .venv/bin/python benchmarks/sweep_paper.py [--jobs 2] [--runs results/sweep_paper] [--keep] [-o DIR]
 

@@ -1,4 +1,4 @@
-"""Benchmark of the transient tangential solver on the seed's Cattaneo scene (theory.md §5, §7.2).
+"""Benchmark of the transient tangential solver on the seed's Cattaneo scene (docs/theory.md §5, §7.2).
 
     .venv/bin/python benchmarks/tangential_cattaneo.py [--repeats 5] [-o DIR]
 

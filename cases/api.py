@@ -166,7 +166,7 @@ def stresses(run, *, steps=None, depths=None, progress=False):
     first principal stress at `depths` (mm, increasing; default: 30 depths from 0 to 2 a, finer near the surface) for
     `steps` (stored steps, 'all', or None for the last stored one).
 
-    run: a run file (path), whose /subsurface they become (README, "HDF5 layout"; an earlier one is replaced), or a
+    run: a run file (path), whose /subsurface they become (docs/hdf5_schema.md; docs/user_guide.md, "HDF5 layout"; an earlier one is replaced), or a
     RunResult: of a file, added to that file (and its `subsurface` updated), or held in memory only, computed and
     kept in memory. Returns them (cases.results.subsurface.Subsurface: name -> (steps, nz, ny, nx) MPa arrays, with
     `z`, `steps`, `units`; `report()` is the line the command prints)."""

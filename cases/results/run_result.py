@@ -1,7 +1,7 @@
 """The result of one run, `RunResult`: what `rollcontact.run` returns, what a run file holds and what
 `rollcontact.read_run` reads back, as numpy arrays and plain Python values. Units: mm, N, MPa, s.
 
-The names below are the public contract of the HDF5 layout too (cases.results.hdf5; README, "HDF5 layout"):
+The names below are the public contract of the HDF5 layout too (cases.results.hdf5; docs/hdf5_schema.md):
 later versions add names, never rename them.
 """
 from __future__ import annotations

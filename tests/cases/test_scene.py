@@ -14,7 +14,7 @@ def test_default_scene_is_the_seed_table1_perpendicular_setting():
     assert s.geometry.R == 40.0 and s.load.Fn == 21.19 and s.load.mu == 0.93
     assert s.spacing == (0.2, 0.2)
     assert s.f_t == 0.46 and s.motion.w == 0.23 and s.motion.angle == 90.0
-    assert s.contact_radius == pytest.approx(4.7857, abs=1e-4)  # theory §7.1
+    assert s.contact_radius == pytest.approx(4.7857, abs=1e-4)  # docs/theory.md §7.1
     assert s.rolling_direction == pytest.approx((0.0, 1.0), abs=1e-15)
 
 
