@@ -1,4 +1,4 @@
-"""Half-space convolution operator: influence coefficients applied by zero-padded FFT (theory.md §3).
+"""Half-space convolution operator: influence coefficients applied by zero-padded FFT (docs/theory.md §3).
 
 The displacement fields produced by piecewise-constant tractions on a `Grid` are aperiodic 2-D
 convolutions with the element influence coefficients (`bem.influence`). They are evaluated exactly by
@@ -7,7 +7,7 @@ Liu 2000). Kernel spectra and pyfftw plans are built once per operator and reuse
 preallocated, so a product allocates only its output (or nothing, when `out=` is given).
 
 Fields are arrays of shape (ny, nx): pressure p and tractions tau_x, tau_y in MPa, displacements in mm
-(theory.md §0 conventions: u_z positive into the bodies, (u_x, u_y) substrate relative to sphere).
+(docs/theory.md §0 conventions: u_z positive into the bodies, (u_x, u_y) substrate relative to sphere).
 """
 import math
 
@@ -21,7 +21,7 @@ from rollcontact.bem.materials import MaterialPair
 
 #: |beta| below which the normal-tangential coupling is dropped in 'auto' mode. At the seed's
 #: steel-on-rubber pair (beta = 7e-6) the coupling displacements are < 1e-5 of the direct ones,
-#: far below any accuracy the discretisation offers (theory.md §1).
+#: far below any accuracy the discretisation offers (docs/theory.md §1).
 COUPLING_THRESHOLD = 1e-4
 
 #: Floor on the eigenvalues of the periodic kernel symbols when they are inverted, relative to the self coefficient
@@ -164,7 +164,8 @@ class HalfSpaceOperator:
         whose kernel is the influence coefficient at the nearest periodic offset (Strang's choice); the
         circulant is inverted exactly in Fourier space. Working on the unpadded grid costs a quarter of
         a padded convolution, so a preconditioned CG iteration costs about 1.25 convolution pairs
-        (theory.md §4.3, §5.4). Its period is the 5-smooth length of the grid (smooth_length) (an odd length is kept here:
+        (docs/theory.md §4.3, §5.4). Its period is the 5-smooth length of the grid (smooth_length) (an odd length is
+        kept here:
         the circulant's period changes the preconditioner, and the near-bound tangential solves were measured
         with these periods). The zz, xx, yy kernels are even and xy is odd in X and in Y, so all four
         symbols are real. The symbol's eigenvalues are floored at PRECONDITIONER_FLOOR times the self

@@ -166,7 +166,7 @@ def stresses(run, *, steps=None, depths=None, progress=False):
     first principal stress at `depths` (mm, increasing; default: 30 depths from 0 to 2 a, finer near the surface) for
     `steps` (stored steps, 'all', or None for the last stored one).
 
-    run: a run file (path), whose /subsurface they become (README, "HDF5 layout"; an earlier one is replaced), or a
+    run: a run file (path), whose /subsurface they become (docs/hdf5_schema.md; docs/user_guide.md, "HDF5 layout"; an earlier one is replaced), or a
     RunResult: of a file, added to that file (and its `subsurface` updated), or held in memory only, computed and
     kept in memory. Returns them (cases.results.subsurface.Subsurface: name -> (steps, nz, ny, nx) MPa arrays, with
     `z`, `steps`, `units`; `report()` is the line the command prints)."""
@@ -246,7 +246,7 @@ def compare(a, b, *, step=None, output=None, overwrite=False):
     return compare_targets(a, b, step=step, output=output, overwrite=overwrite)
 
 
-def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, fidelity=None, overrides=None, output="creep",
+def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, fidelity=None, overrides=None, output="results/creep",
                 overwrite=False):
     """The creep-force curve of a steady [rolling] scene (a Scene or a TOML file path; as `rollcontact creep-curve`):
     `points` creepages of `of` ('xi', 'eta' or 'phi') geometrically from 0.02 to `max_ratio` times the saturation

@@ -7,7 +7,7 @@ The scene's [rolling] creepages are replaced by a range of the one given with --
 values geometrically from 0.02 to --max times its saturation creepage (cases.run.creep_curve), on each model given
 with --fidelity (repeatable: bem, fastsim, fastrip, drawn side by side; default the scene's [solver] fidelity, or
 bem). Writes DIR/<scene>_creep_<of>.csv (the exact theory; <scene>_creep_<of>_<model>.csv for a fast model) and
-the figure .png/.pdf (default DIR: creep/ in the current folder) and prints their paths. Exit codes: 0 written, 2
+the figure .png/.pdf (default DIR: results/creep/ in the current folder, which git ignores) and prints their paths. Exit codes: 0 written, 2
 bad input (the scene has no [rolling] or a transient one, coupled materials, a file exists), 1 a file that could
 not be written. Over `rollcontact.creep_curve` (cases.run.creep_curve).
 """
@@ -31,7 +31,8 @@ def register(subparsers):
                         "side (default: the scene's solver.fidelity, or bem)")
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="SECTION.KEY=VALUE",
                    help="override a scene key (repeatable)")
-    p.add_argument("-o", "--output", default="creep", help="output folder (default: creep/)")
+    p.add_argument("-o", "--output", default="results/creep",
+                   help="output folder (default: results/creep/)")
     p.add_argument("--overwrite", action="store_true", help="replace files that exist")
     p.set_defaults(func=creep_curve_handler)
     return p

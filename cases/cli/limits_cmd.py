@@ -1,4 +1,4 @@
-"""`rollcontact limits`: closed-form shakedown limits of oscillating rolling (solver.mdr.limits, theory §8).
+"""`rollcontact limits`: closed-form shakedown limits of oscillating rolling (solver.mdr.limits, docs/theory.md §8).
 
     rollcontact limits --w 0.23 [--angle 90 | --kappa K]     f_t,lim, u_lim and a table u_sd(f_t)
     rollcontact limits --ft 0.46 [--angle 90 | --kappa K]    w_lim (the largest amplitude with shakedown)
@@ -37,7 +37,7 @@ def register(subparsers) -> argparse.ArgumentParser:
     """Add the `limits` subcommand to an argparse subparsers object; handler set as `func`."""
     p = subparsers.add_parser(
         "limits", help="closed-form shakedown limits (MDR, seed Eqs. 12-19)",
-        description="Closed-form shakedown limits of oscillating rolling (seed Eqs. 12-19, theory.md §8). "
+        description="Closed-form shakedown limits of oscillating rolling (seed Eqs. 12-19, docs/theory.md §8). "
                     "w = W/a, f_t = Ft/(mu Fn), u = U/U0 with U0 = mu E* d/G*.")
     p.add_argument("--w", type=float, help="oscillation amplitude w = W/a (0..1)")
     p.add_argument("--ft", type=float, help="tangential load ratio f_t = Ft/(mu Fn) (0..1)")

@@ -2,14 +2,14 @@
 shakedown behaviour depends on the angle theta between Ft and the rolling direction (the seed's open question I).
 
 `<folder>_angles`, six panels against theta (folded to 0..90 deg: theta, -theta and 180 - theta are mirror
-images of one another, theory §11.1):
+images of one another, docs/theory.md §11.1):
 * kappa of seed Eq. 13 fitted per angle over its shaken-down runs (least squares, +- its standard error), with
   the interpolation kappa(theta) = kappa_par cos^2(theta) + kappa_perp sin^2(theta) between the fits at 0 and 90;
 * u_sd = U_sd/U0 per (f_t, w) of the shaken-down runs;
 * du = dU/U0 per period of the ratcheting runs, and their sideways walk du_perp = dU_perp/U0 per period;
 * the sideways offset U_perp/U0 at which the shaken-down runs come to rest;
 * f_t,lim from limits.csv (a limit search with motion.angle varied), bracket as error bar, against the
-  angle-free bound 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, theory §8.4) and the seed's Eqs. 18-19 at 0 and 90 deg.
+  angle-free bound 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, docs/theory.md §8.4) and the seed's Eqs. 18-19 at 0 and 90 deg.
 `angle_fit_text` gives the same numbers as text, with the largest error of both closed forms.
 Units: f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9), theta in degrees.
 """
@@ -63,7 +63,7 @@ def kappa_interpolation(fits):
 
 
 def lens_bound(w):
-    """The angle-free closed form proposed for f_t,lim: 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, theory §8.4)."""
+    """The angle-free closed form proposed for f_t,lim: 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, docs/theory.md §8.4)."""
     w = np.asarray(w, dtype=float)
     return 1.0 - 1.5 * w + 0.5 * w ** 3
 

@@ -1,9 +1,9 @@
 """Shared pieces of the figures (`plots_run`, `plots_sweep`): reading a run for plotting, normalisations,
 colours, the seed's contact regions, centre-line sampling and saving.
 
-Normalisations (seed Eq. 9 with the consistent constants, theory.md §8.2 and pitfall P3):
+Normalisations (seed Eq. 9 with the consistent constants, docs/theory.md §8.2 and docs/theory.md P3):
 u = U/U0 with U0 = mu E* d/G* (U measured along Ft), f_t = Ft/(mu Fn), w = W/a, tractions over mu p0,
-pressures in MPa, coordinates in mm. Sign conventions as in theory.md §0: tau is the traction exerted by the
+pressures in MPa, coordinates in mm. Sign conventions as in docs/theory.md §0: tau is the traction exerted by the
 sphere on the substrate, u_x the displacement of the substrate surface relative to the sphere.
 
 Colours are fixed across every figure: parallel (rolling along Ft) blue, perpendicular red, other angles in

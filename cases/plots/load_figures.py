@@ -2,7 +2,7 @@
 
 * left: the hysteresis loop, u = U/U0 along Ft against f_t = Ft/(mu Fn) (Fn: the scene's mean normal force), every
   step, the last period drawn bold; for constant Fn, a mean f_t of 0 and no rolling, the Mindlin-Deresiewicz
-  branches of the closed cycle (theory.md §11.2) dashed;
+  branches of the closed cycle (docs/theory.md §11.2) dashed;
 * right: the frictional work of each period (N mm, /history/dissipation summed over the period), with the
   Mindlin-Deresiewicz loop area in the same case; a shaken-down run's work falls to zero.
 
@@ -47,7 +47,7 @@ def loads_figure(view: RunView):
     if cm is not None:
         t = np.linspace(-x, x, 201)
         ax.plot(t, [cm.unloading_shift(x, ti) / view.U0 for ti in t], "--", color=MDR_COLOUR, lw=1.2,
-                label="Mindlin-Deresiewicz (theory §11.2)")
+                label="Mindlin-Deresiewicz (docs/theory.md §11.2)")
         ax.plot(t, [cm.reloading_shift(x, ti) / view.U0 for ti in t], "--", color=MDR_COLOUR, lw=1.2)
     ax.set_xlabel(r"$f_t = F_t/(\mu F_n)$ (mean $F_n$)")
     ax.set_ylabel(r"$u = U/U_0$ (along $F_t$)")

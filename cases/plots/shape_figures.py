@@ -1,6 +1,6 @@
 """Sweep figure of a folder whose runs are not of a sphere (`rollcontact plot OUTDIR` on a cone, power-law or
 rounded-flat-punch sweep; issue #27): the seed's closed forms (kappa curves, Eqs. 12-21) hold for the sphere only,
-so the runs are compared with the MDR of their own profile (theory.md §8.3 for any profile, solver.mdr.exact).
+so the runs are compared with the MDR of their own profile (docs/theory.md §8.3 for any profile, solver.mdr.exact).
 
 * <folder>_usd: u_sd versus f_t of the shaken-down runs (o parallel, ^ perpendicular, s the 1-D MDR model) with
   the profile's MDR u_sd(f_t) at each w and its end point (f_t,lim, u_lim), the profile's u_stat (w = 0) and, when
@@ -33,7 +33,7 @@ def shape_usd_figure(points, scene, limits, title):
         f_lim, u_lim = tg.limit(w * a)
         ff = np.linspace(0, f_lim, 200)
         ax.plot(ff, [tg.shakedown_shift(x, w * a) for x in ff], "-.", color=MDR_COLOUR, lw=1.2,
-                label=f"MDR $u_{{sd}}$ of the profile, w = {w:g} (theory §8.3)")
+                label=f"MDR $u_{{sd}}$ of the profile, w = {w:g} (docs/theory.md §8.3)")
         ax.plot(f_lim, u_lim, "o", color=MDR_COLOUR, ms=5)
         ax.annotate(f"MDR limit {f_lim:.3f}", (f_lim, u_lim), xytext=(6, -10), textcoords="offset points", fontsize=8)
     for r in limits:                       # f_err = [[below], [above]] of read_limits

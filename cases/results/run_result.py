@@ -1,7 +1,7 @@
 """The result of one run, `RunResult`: what `rollcontact.run` returns, what a run file holds and what
 `rollcontact.read_run` reads back, as numpy arrays and plain Python values. Units: mm, N, MPa, s.
 
-The names below are the public contract of the HDF5 layout too (cases.results.hdf5; README, "HDF5 layout"):
+The names below are the public contract of the HDF5 layout too (cases.results.hdf5; docs/hdf5_schema.md):
 later versions add names, never rename them.
 """
 from __future__ import annotations
@@ -22,7 +22,7 @@ HISTORY_UNITS = {
     "wall_time": "s", "dissipation": "N mm",
 }
 #: dissipation: the frictional work of the step, -sum tau . s dA with the end-of-step traction tau and the step's
-#: slip s (solver.rolling.energy; theory.md §11.2).
+#: slip s (solver.rolling.energy; docs/theory.md §11.2).
 HISTORY_NAMES = tuple(HISTORY_UNITS)
 #: /history of a [rolling] transient run (cases.run.creep_transient) adds: M_z the moment on the rolling sphere
 #: about the contact centre (Kalker's convention), xi, eta the creepages of the step, cpu_time its process CPU time.

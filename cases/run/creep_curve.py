@@ -1,4 +1,4 @@
-"""Creep-force curves of a [rolling] scene (`rollcontact creep-curve`; theory.md §7.3, §11.5), as CSV.
+"""Creep-force curves of a [rolling] scene (`rollcontact creep-curve`; docs/theory.md §7.3, §11.5), as CSV.
 
 One creepage of the scene (xi, eta or phi) is varied from the linear range to full sliding, the other two held at
 zero, on the scene's contact-fixed grid and pressure (solved once: the normal problem does not depend on the

@@ -1,4 +1,4 @@
-"""One run of a [rolling] scene: steady rolling with creepage and spin (solver.creep; theory.md §7.3, §11.5).
+"""One run of a [rolling] scene: steady rolling with creepage and spin (solver.creep; docs/theory.md §7.3, §11.5).
 
 The scene's profile is turned into the rolling frame (x along [rolling] direction, y to its left), the normal
 problem is solved on a contact-fixed grid over the Hertz contact plus the scene's margin (NormCG), and the steady
@@ -10,7 +10,7 @@ slip).
 
 What is stored: one step (step 0) in /history and /fields (output.fields = "none" stores no fields), on the
 contact-fixed grid of the rolling frame (a transient run: cases.run.creep_transient, on the world-fixed grid).
-The fields keep the meaning they have in every run file (README, "HDF5 layout"): tau_x, tau_y the traction the
+The fields keep the meaning they have in every run file (docs/hdf5_schema.md): tau_x, tau_y the traction the
 sphere exerts on the substrate, u_x, u_y the substrate's displacement relative to the sphere, slip_x, slip_y the
 slip of the substrate relative to the sphere over a rolling step of one element (dx, in mm: the steady state
 seen as one step of the transient), region 0 / 1 / 2; history F_x, F_y is sum(tau) dA, the force on the

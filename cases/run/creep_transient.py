@@ -1,5 +1,5 @@
 """One run of a [rolling] mode = "transient" scene: rolled on the world-fixed grid from an initial state
-(solver.creep.world; theory.md §6, §11.5), with the steady state of the same scene solved beside it.
+(solver.creep.world; docs/theory.md §6, §11.5), with the steady state of the same scene solved beside it.
 
 The world-fixed grid has its x axis along [rolling] direction (the frame of the steady run) and is just long enough
 for the rolled distance plus the contact: x from -(a_r + margin) to distance + a_r + margin, y over +-(b_r + margin),

@@ -21,7 +21,7 @@ SIDEWAYS_REPORTED = 1e-9
 
 
 def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:
-    """Run summary: normalisations of seed Eq. 9 with the consistent constants (theory §8.2, P3)."""
+    """Run summary: normalisations of seed Eq. 9 with the consistent constants (docs/theory.md §8.2, P3)."""
     pair = scene.material_pair
     hertz = scene.normal_reference        # Hertz (sphere, ellipsoid's equivalent sphere) or the shape's MDR
     n_done = len(history["U_x"])

@@ -185,7 +185,7 @@ class SceneChecks:
         return ", ".join(f"{f.name} = {getattr(g, f.name)!r}" for f in fields(g) if getattr(g, f.name) is not None)
 
     def _check_oscillation(self):
-        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
+        """Refuse a load schedule that lifts the sphere off or slides (docs/theory.md §11.2-11.3), before any work.
 
         The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
         checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi

@@ -23,7 +23,7 @@ Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contr
 
 A key left out takes its default (the field specs of `cases.scene.keys`): the seed paper's materials, Fn, mu
 and rolling angle, but no tangential load and no motion; only [geometry] is required. So a scene file states
-only what its scene needs (the README's scene-key table lists the defaults). Unknown keys, wrong types and
+only what its scene needs (docs/scene_reference.md lists the defaults). Unknown keys, wrong types and
 out-of-range values raise `SceneError` naming the key, the value and the allowed range; so do, for a new
 run, a grid coarser than MIN_ELEMENTS_PER_RADIUS elements per Hertz semi-axis and a path of more than
 MAX_STEPS steps.

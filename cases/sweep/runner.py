@@ -1,4 +1,4 @@
-"""Parameter sweeps over scenes (seed Fig. 8; theory.md §8).
+"""Parameter sweeps over scenes (seed Fig. 8; docs/theory.md §8).
 
 A sweep is the Cartesian product of a few scene keys ("axes"), each given on the command line as
 `--vary section.key=start:stop:count` or `--vary section.key=v1,v2,...` (syntax: `cases.sweep.plan.parse_vary`).

@@ -1,5 +1,5 @@
 """Creep-force curves: steady rolling solved over a range of creepages, each solution the warm start of the next
-(theory.md §7.3, §11.5), and the curves they are drawn against.
+(docs/theory.md §7.3, §11.5), and the curves they are drawn against.
 
 Kalker's sign convention (`solver.creep.kalker`): forces on body 1, opposing the creepages. The reference curves
 are the linear theory F = G c^2 C11 xi (and C22, C23) and the saturation model of Vermeulen & Johnson (1964):
@@ -67,5 +67,5 @@ def vermeulen_johnson(linear_force_ratio):
 
 def saturation_creepage(G, c, coefficient, mu, normal_force):
     """The creepage at which the linear force G c^2 C reaches mu Fn (for spin, pass c * C23 as `coefficient`
-    to get 1/mm): CONTACT's normalising creepage (theory.md §7.3)."""
+    to get 1/mm): CONTACT's normalising creepage (docs/theory.md §7.3)."""
     return mu * normal_force / (G * c * c * coefficient)

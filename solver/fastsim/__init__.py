@@ -1,7 +1,7 @@
 """Fast tangential models of rolling with creepage and spin: FASTSIM and FaStrip, on a grid, arrays in and out.
 
     flexibility  the simplified theory's flexibilities L1, L2, L3 (and Kalker's weighted L) and the strip theory's
-                 stiffnesses, from Kalker's C11, C22, C23 (theory.md §7.3, §12.4)
+                 stiffnesses, from Kalker's C11, C22, C23 (docs/theory.md §7.3, §12.4)
     strips       strip edges of a contact on a grid, Hertz's semi-ellipsoidal and Kalker's parabolic bounds
     fastsim      FASTSIM (Kalker 1982): steady on a contact-fixed grid, transient on a world-fixed grid
     fastrip      FaStrip (Sichani, Enblom & Berg 2016): strip theory with Kalker's coefficients, steady

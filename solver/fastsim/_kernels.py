@@ -1,4 +1,4 @@
-"""Compiled element loops of the fast models (`solver.fastsim`; docs/creep_fidelity.md, theory.md §12.4).
+"""Compiled element loops of the fast models (`solver.fastsim`; docs/creep_fidelity.md, docs/theory.md §12.4).
 
 Fields are (ny, nx) or (2, ny, nx) float64 arrays on a grid whose x axis is the rolling direction: body 1 rolls
 in +x, so in contact-fixed coordinates the material enters the contact at its leading edge (largest x) and leaves

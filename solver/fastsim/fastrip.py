@@ -1,6 +1,6 @@
 """FaStrip: Kalker's strip theory amended with his creep coefficients, with FASTSIM's traction directions in the slip
 zone (Sichani, Enblom & Berg 2016, "An alternative to FASTSIM for tangential solution of the wheel-rail contact",
-Vehicle System Dynamics 54:748-764; re-derived in docs/creep_fidelity.md; theory.md §12.4).
+Vehicle System Dynamics 54:748-764; re-derived in docs/creep_fidelity.md; docs/theory.md §12.4).
 
 Each row's run of contact cells is a strip of half-length l with an elliptical pressure P sqrt(l^2 - x'^2) (P from
 the strip's own load, so any pressure on the grid can be used). Kalker's strip theory (1967) solves each strip as

@@ -1,5 +1,5 @@
 """FASTSIM: Kalker's simplified theory of rolling contact on a grid, steady and transient (Kalker 1982, Vehicle
-System Dynamics 11:1-13; theory.md §12.4; docs/creep_fidelity.md).
+System Dynamics 11:1-13; docs/theory.md §12.4; docs/creep_fidelity.md).
 
 Kalker's convention (solver.creep.kalker): body 1 rolls in +x over body 2, xi, eta (dimensionless) and phi (1/mm)
 the rigid slip of body 1 relative to body 2 per unit rolling distance, tractions and forces on body 1. The

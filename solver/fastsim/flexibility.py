@@ -1,5 +1,5 @@
 """The flexibilities of Kalker's simplified theory and of the strip theory, calibrated on Kalker's creep coefficients
-C11, C22, C23 (solver.creep.kalker; theory.md §7.3, §12.4; derivations in docs/creep_fidelity.md).
+C11, C22, C23 (solver.creep.kalker; docs/theory.md §7.3, §12.4; derivations in docs/creep_fidelity.md).
 
 Simplified theory (Kalker 1982, "A fast algorithm for the simplified theory of rolling contact", Vehicle System
 Dynamics 11:1-13): the surface displacement difference is u = L tau. Integrating the stick condition du/dx = w from

@@ -1,4 +1,4 @@
-"""One call for the tangential state of a contact patch by a fast model, arrays in and out (theory.md §12.4).
+"""One call for the tangential state of a contact patch by a fast model, arrays in and out (docs/theory.md §12.4).
 
 For a caller that has a contact patch rather than a scene (a wheel-rail contact point, a multibody step): either the
 semi-axes of a Hertzian ellipse and its normal force (the patch is then discretised on its own strip grid, the

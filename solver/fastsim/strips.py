@@ -1,5 +1,5 @@
 """The contact seen as strips along the rolling direction, and the traction bounds of the fast models
-(docs/creep_fidelity.md; theory.md §7.1, §12.4).
+(docs/creep_fidelity.md; docs/theory.md §7.1, §12.4).
 
 The grid's x axis is the rolling direction; each row's run of cells in contact is a strip from its trailing to its
 leading edge. `strip_edges` finds the edges from any pressure on the grid (p^2 extrapolated to zero beyond the

@@ -3,7 +3,7 @@
 benchmarks/mdr_error_map.py).
 
 Axes: the alignment angle between the rolling direction and the tangential force (folded onto 0 ... 90 deg: the
-two alignments measured, theory.md §11.1), w = W/a and f_t = Ft/(mu Fn) (seed Eq. 9), on the materials, shape and
+two alignments measured, docs/theory.md §11.1), w = W/a and f_t = Ft/(mu Fn) (seed Eq. 9), on the materials, shape and
 resolution of the map's runs (a sphere, uncoupled, the Poisson ratio `nu` of the map). The error is
 |u_sd(MDR) - u_sd(3-D)| / u_sd(3-D) where both runs shake down, and infinite where either does not (a ratcheting
 or undecided run has no u_sd to compare, and the MDR's limit differs from the 3-D one). Prediction

@@ -1,4 +1,4 @@
-"""Kalker's quasi-static transient ("shift") problem on the world-fixed grid (theory.md §5).
+"""Kalker's quasi-static transient ("shift") problem on the world-fixed grid (docs/theory.md §5).
 
 One step n -> n+1. Known: the previous traction tau' (2, ny, nx) in MPa, the traction bound
 g = mu p (ny, nx) in MPa (zero outside the contact). Unknown: the traction tau (zero where g = 0) and the
@@ -7,7 +7,7 @@ rigid-shift increment dU (2,) in mm. With the slip of the step
     s = A (tau - tau') + e - dU                                   (e = extra_slip, e.g. A^tz (p - p'))
 
 Coulomb's law holds per element: stick |tau| <= g with s = 0, slip tau = -g s/|s|, and the total force
-sum tau dA = F (N). Signs (theory §0): tau acts on the substrate; U is the sphere's rigid shift relative
+sum tau dA = F (N). Signs (docs/theory.md §0): tau acts on the substrate; U is the sphere's rigid shift relative
 to the substrate far field, U.F > 0 under a steady load (Cattaneo: U_x > 0 for F along +x).
 
 Method: active-set Newton-CG with deflation ("projected TangCG")
@@ -15,18 +15,18 @@ Method: active-set Newton-CG with deflation ("projected TangCG")
 The step is the convex program  min 1/2 (tau - tau')^T A (tau - tau') + e.tau  over the discs
 |tau_I| <= g_I with sum tau = F/dA (dU is the multiplier of the force constraint). We solve it with one
 nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, Vollebregt & Oosterlee
-2015, theory §5.4), with three choices that matter for speed:
+2015, docs/theory.md §5.4), with three choices that matter for speed:
 
 * Exact Newton linearisation of the slip area. In a slip element the unknown is the direction of
   tau = g n; the linearised operator is t^T A t plus the curvature kappa = |s|/g (rotating a traction of
   fixed length changes its direction). The stick/slip operator K = P (A + kappa) P (P = identity in stick,
   t t^T in slip) is symmetric positive definite, so CG applies without change inside a fixed division.
-* The force constraint by deflation, as the approach in NormCG (theory §4.3, §5.2 alternative): every
+* The force constraint by deflation, as the approach in NormCG (docs/theory.md §4.3, §5.2 alternative): every
   direction is projected onto sum v = 0 in the free directions, so a CG step keeps the force (only the
   renormalisation of the slip tractions moves it, by second-order amounts, until the next exact
   re-synchronisation puts it back); dU is recovered in closed form as the least-squares multiplier
   (stick slip and tangential slip orthogonal to the constraint vectors). There is no outer Newton loop on
-  dU and no bracketing, so there is nothing to degrade near the traction bound (P12).
+  dU and no bracketing, so there is nothing to degrade near the traction bound (docs/theory.md P12).
 * A symmetric preconditioner (`solver.tangential._preconditioner`) built from Strang-circulant inverses of the
   2x2-block operator on the unpadded grid (`op.tangential_inverse`). In the stick area it is M = A^-1; on a
   slip element, whose turning is resisted by a_tt + kappa, the two-term form Q P M P Q + D with
@@ -46,8 +46,9 @@ own traction can undo over its whole range, their traction is turned against the
 minimises the energy along the turns (`_tangcg.ProjectedTangCG.turn_reversed`): released, their stick
 residual would be far outside the disc), slip elements are renormalised to |tau| = g, and the force is
 restored by a uniform shift of the stick tractions wherever u is then recomputed exactly; the CG recurrence
-restarts after any change of the division. The projected gradient method (theory §5.5) is simpler but needs
-thousands of products on these problems (it serves only as the cycling safeguard below); Gauss-Seidel (§5.3) is
+restarts after any change of the division. The projected gradient method (docs/theory.md §5.5) is simpler but needs
+thousands of products on these problems (it serves only as the cycling safeguard below); Gauss-Seidel (docs/theory.md
+§5.3) is
 sequential and grows with the grid.
 
 Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
@@ -76,7 +77,7 @@ Cycling safeguard: the active-set iteration is not monotone in the energy (proje
 it can cycle: cold solves close to the bound on fine grids, and warm starts far from a load turned near the
 bound (from f_t = 0.75 along x to 0.99 turned by 1 rad at 55^2: no convergence in 3000 products; now 66). When
 the best exact residual has not halved for STALL_PRODUCTS products, GRADIENT_PRODUCTS steps of the accelerated
-projected gradient method (theory §5.5; monotone in the energy, so it leaves any cycle) run from the best exact
+projected gradient method (docs/theory.md §5.5; monotone in the energy, so it leaves any cycle) run from the best exact
 iterate, and CG resumes from there (`_tangcg.ProjectedTangCG.gradient_phase`). When an exact
 re-synchronisation finds the residual far above the tolerance (drift of the self-coefficient updates on dense
 slip areas), u is kept exact from then on. One early re-synchronisation, when the residual first falls below
@@ -147,7 +148,7 @@ class TangentialParams:
 
 @dataclass
 class TangentialResult:
-    """Solution of one step (units MPa, mm, N; theory.md §5.1)."""
+    """Solution of one step (units MPa, mm, N; docs/theory.md §5.1)."""
 
     traction: np.ndarray        # (2, ny, nx) MPa
     shift_increment: np.ndarray  # (2,) mm, dU of this step (U_new = U_old + dU)
@@ -169,7 +170,7 @@ def traction_capacity(bound, grid) -> float:
 def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, initial=None,
                      extra_slip=None, previous_displacement=None, previous_region=None,
                      params=TangentialParams()) -> "TangentialResult":
-    """Solve one step of the transient tangential problem (theory.md §5.1).
+    """Solve one step of the transient tangential problem (docs/theory.md §5.1).
 
     Parameters
     ----------
@@ -210,14 +211,14 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                          None if extra_slip is None else np.asarray(extra_slip, dtype=float), params,
                          lambda region: _regime(force, capacity, region))
     ws = it.ws
-    # start (theory §5.1): u' = A tau', tau on the discs (and the force), u = A tau
+    # start (docs/theory.md §5.1): u' = A tau', tau on the discs (and the force), u = A tau
     memo_reuses = _previous_displacement(it, tau_p, previous_displacement)
     if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
         return _finish(it, extra_slip, dA, 0.0)
     FP.start_traction(ws.tau, tau_p if initial is None else initial, g, it.f_cells, previous_region, ws.region,
                       ws.u, it.axx, it.ayy)
     it.memo_reuses = _start_displacement(it, tau_p, memo_reuses)
-    # projected TangCG with the force constraint deflated (theory §5.4, §5.2); dU is its multiplier
+    # projected TangCG with the force constraint deflated (docs/theory.md §5.4, §5.2); dU is its multiplier
     residual = it.run()
     if F is not None and not np.any(ws.region == 1):
         _stick_point_shift(ws.tau, ws.w, g, ws.region, dU, ws.slip)
@@ -313,7 +314,7 @@ STICK_POINT_RESOLVED = 1e-3
 
 
 def _stick_point_shift(tau, w, g, region, dU, slip):
-    """Rigid shift when the stick zone is smaller than one element (no stick element left, P12).
+    """Rigid shift when the stick zone is smaller than one element (no stick element left, docs/theory.md P12).
 
     Without a stick element the multiplier of the force constraint is no longer a displacement of
     stuck material. When the slip directions are nearly parallel (a load in one direction, f_t -> 1), it is

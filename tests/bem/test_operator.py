@@ -1,4 +1,4 @@
-"""FFT convolution operator (theory.md §3): exact against the dense matrix product."""
+"""FFT convolution operator (docs/theory.md §3): exact against the dense matrix product."""
 import numpy as np
 import pytest
 from scipy.fft import next_fast_len
@@ -101,7 +101,7 @@ def test_coupling_is_off_for_the_seed_materials_and_costs_nothing():
 
 
 def test_hertz_pressure_gives_hertz_displacement():
-    # theory §2.2: the cell-sampled Hertz pressure of the scene gives w within ~0.1 % of d everywhere
+    # docs/theory.md §2.2: the cell-sampled Hertz pressure of the scene gives w within ~0.1 % of d everywhere
     # (inside w = d - r^2/2R, outside the closed form). Sampling at centres (not cell averages) adds
     # an O(dx^2/a^2) error: the bound 3e-3 d covers both.
     hz = HertzSphere(40.0, SCENE.E_star, 21.19)

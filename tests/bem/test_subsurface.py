@@ -1,4 +1,4 @@
-"""Subsurface stresses (bem.subsurface, theory.md §11.6): the element kernels against the point-load solutions and
+"""Subsurface stresses (bem.subsurface, docs/theory.md §11.6): the element kernels against the point-load solutions and
 Love's closed form, the FFT layers against direct summation, the surface and equilibrium conditions, Hertz's axis."""
 import math
 
@@ -160,8 +160,9 @@ def _hertz_pressure(grid, a, p0, sub=16):
 def test_hertz_axis_stresses_match_closed_form_on_the_default_grid():
     """Frictionless Hertz contact, nu = 0.3, default resolution a/dx = 12 (cell-averaged Hertz pressure): on the axis
     sigma_z = -p0/(1 + z^2/a^2), sigma_r = -p0 [(1 + nu)(1 - (z/a) atan(a/z)) - 1/(2(1 + z^2/a^2))] within 1 % of p0
-    (the issue's bound; measured 0.13 %), and the maximum shear 0.310 p0 at z = 0.481 a, von Mises 0.620 p0 (theory.md
-    §11.6), found within 0.002 p0 and one depth step (a/50)."""
+    (the issue's bound; measured 0.13 %), and the maximum shear 0.310 p0 at z = 0.481 a, von Mises 0.620 p0
+    (docs/theory.md
+    docs/theory.md §11.6), found within 0.002 p0 and one depth step (a/50)."""
     a, p0 = 1.0, 1.0
     n = 15
     g = Grid(2 * n + 1, 2 * n + 1, a / 12, a / 12, -n, -n)

@@ -22,7 +22,7 @@ def _seed(**sections):
 
 def test_omitted_dx_is_the_contact_radius_over_twelve_and_dW_follows():
     s = _seed()
-    a = s.contact_radius                                   # 4.786 mm (theory §7.1)
+    a = s.contact_radius                                   # 4.786 mm (docs/theory.md §7.1)
     assert s.spacing == (0.4, 0.4) and s.motion.dW == 0.4  # a/12 = 0.399 -> 2 digits
     assert abs(s.grid.dx - a / RESOLUTION_PER_RADIUS) <= 0.005
     assert s.derived == {"grid.dx", "motion.dW"}

@@ -51,7 +51,7 @@ def test_fig4_perpendicular_has_larger_shakedown_displacement_and_larger_ratchet
 
 
 def test_static_phase_reproduces_cattaneo_mindlin(fig4):
-    # after the loading phase (w not yet applied) U = U_stat of seed Eq. 4 within 1 % (P10: nu = 0.5)
+    # after the loading phase (w not yet applied) U = U_stat of seed Eq. 4 within 1 % (docs/theory.md P10: nu = 0.5)
     s = fig4[("parallel", 0.46)].summary
     scene = default_scene()
     pair = scene.material_pair
@@ -99,7 +99,8 @@ def test_shakedown_state_is_all_stick_with_the_three_regions_of_sect_3_2(fig4):
 #
 # Reference: the kappa that puts Eq. 13 through the converged u_sd, i.e. u_sd of the same scenes at half the
 # paper's spacing (dx = dy = dW = 0.1 mm, margin 0.6, 10 periods; 20 at f_t = 0.6, where the increments shrink
-# only by a factor 0.6 per period, P12), kappa = (1 - f_t - (1 - u_sd)^(3/2)) / (w u_sd) = fit_kappa of one point.
+# only by a factor 0.6 per period, docs/theory.md P12), kappa = (1 - f_t - (1 - u_sd)^(3/2)) / (w u_sd) = fit_kappa of
+# one point.
 # Measured 2026-11-25 (`paper_run(..., "grid.dx=0.1", "motion.dW=0.1", f"motion.periods={periods}")`, as
 # test_reference_kappa_is_the_converged_one below; 18-34 s per run). u_sd at dx = dW = 0.4 / 0.2 / 0.1 mm:
 #   setting        f_t  dx 0.4     dx 0.2     dx 0.1     change 0.2->0.1  kappa (dx 0.1)  Eq. 13, seed kappa
@@ -144,7 +145,7 @@ FT_FIG8 = (0.2, 0.4, 0.6)
 
 
 def usd_periods(f_t):
-    return 20 if f_t == 0.6 else 10  # near the limit the decay is slow (P12)
+    return 20 if f_t == 0.6 else 10  # near the limit the decay is slow (docs/theory.md P12)
 
 
 def usd_run(tmp_path_factory, setting, f_t, *extra):

@@ -1,4 +1,4 @@
-"""Steady rolling with creepage and spin (solver/creep/steady.py) against the closed forms of theory.md §7.3, §7.4
+"""Steady rolling with creepage and spin (solver/creep/steady.py) against the closed forms of docs/theory.md §7.3, §7.4
 and §11.5: Kalker's linear theory (C11, C22, C23), Carter's two-dimensional solution on a slender ellipse, full
 sliding, and the solver's own contract (complementarity, warm starts, errors). Kalker's sign convention: forces on
 body 1, opposing the creepages. Identical bodies with G = 1 MPa (K = 0), Hertz pressure on the ellipse's cells.
@@ -128,7 +128,7 @@ def test_sweep_budget_exhausted_raises_convergence_error():
 
 
 def _carter_traction(x, a, s, mu_p0):
-    """Carter's |tau_x|(x) (theory.md §7.4) for creepage s = R|xi|/(mu a): stick zone of half-width c = a(1 - s)
+    """Carter's |tau_x|(x) (docs/theory.md §7.4) for creepage s = R|xi|/(mu a): stick zone of half-width c = a(1 - s)
     at the leading edge x = a."""
     c = a * (1.0 - s)
     tau = mu_p0 * np.sqrt(np.clip(1 - (x / a) ** 2, 0, None))

@@ -1,6 +1,6 @@
 """The fast models of solver/fastsim against what they are built on: Kalker's creep coefficients in the linear range
-(theory.md §7.3), Coulomb's bound and full sliding at mu Fn, Carter's two-dimensional solution for FaStrip's strips
-(theory.md §7.4), the steady state as the limit of transient rolling, and the exact theory where the literature says
+(docs/theory.md §7.3), Coulomb's bound and full sliding at mu Fn, Carter's two-dimensional solution for FaStrip's strips
+(docs/theory.md §7.4), the steady state as the limit of transient rolling, and the exact theory where the literature says
 FaStrip is the closer model (docs/creep_fidelity.md). Kalker's convention: forces on body 1, opposing the creepages.
 Identical bodies with G = 1 MPa, Hertz pressure on the ellipse's cells (solver.creep.ellipse_grid), c = sqrt(ab) = 1.
 """
@@ -161,7 +161,7 @@ def test_fastsim_transient_at_rest_is_the_simplified_cattaneo_state():
 
 
 def _carter_traction(x, a, s, mu_p0):
-    """Carter's |tau_x|(x) (theory.md §7.4): stick zone of half-width c = a (1 - s) at the leading edge x = a."""
+    """Carter's |tau_x|(x) (docs/theory.md §7.4): stick zone of half-width c = a (1 - s) at the leading edge x = a."""
     c = a * (1.0 - s)
     tau = mu_p0 * np.sqrt(np.clip(1 - (x / a) ** 2, 0, None))
     return tau - mu_p0 * (c / a) * np.sqrt(np.clip(1 - ((x - (a - c)) / c) ** 2, 0, None))
