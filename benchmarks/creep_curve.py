@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+from rollcontact.bem import HalfSpaceOperator, MaterialPair
 from rollcontact.solver.creep import (SteadyRolling, creep_curve, ellipse_grid, hertz_pressure,
                                       kalker_coefficients, saturation_creepage, solve_steady, vermeulen_johnson)
 

@@ -166,7 +166,6 @@ def rolling_case(group, label, overrides, kappa=None, periods=None):
     worst = None
     dA = (d.x[1] - d.x[0]) * (d.y[1] - d.y[0]) if len(d.x) > 1 else 0
     for i, step in enumerate(d.field_steps):
-        k = int(np.flatnonzero(np.asarray(h["step"]) == step)[0])
         inv = invariants(d.fields["p"][i], np.stack([d.fields["tau_x"][i], d.fields["tau_y"][i]]), scene.load.mu,
                          (scene.Ft * scene.load_direction[0], scene.Ft * scene.load_direction[1]), dA,
                          scene.load.Fn)
@@ -251,7 +250,7 @@ def g_coupled(quick):
         a = HertzSphere(R, pair.E_star, FN).a
         rows.append(show(static_case("coupled", f"E2={E2:g} nu2={nu2} beta={pair.beta:.3f} static", pair, R, R,
                                      FN, MU, 0.5, a / 12)))
-        ov = [f"materials.E1=210e3", "materials.nu1=0.3", f"materials.E2={E2}", f"materials.nu2={nu2}",
+        ov = ["materials.E1=210e3", "materials.nu1=0.3", f"materials.E2={E2}", f"materials.nu2={nu2}",
               f"grid.dx={a / 12}", f"motion.dW={a / 12}", f"grid.margin={3 * a / 12}"]
         rows.append(show(rolling_case("coupled", f"E2={E2:g} nu2={nu2} beta={pair.beta:.3f} rolling", ov,
                                       periods=2 if quick else 4)))

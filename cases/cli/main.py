@@ -178,7 +178,7 @@ def build_parser() -> argparse.ArgumentParser:
         limits_cmd = None
     if limits_cmd is not None:
         limits_cmd.register(sub)
-    from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)
+    from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
     from rollcontact.cases.cli import stresses_cmd; stresses_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import creep_cmd; creep_cmd.register(sub)  # noqa: E702

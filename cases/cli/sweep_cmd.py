@@ -11,7 +11,6 @@ what finished is kept and summarised).
 """
 from __future__ import annotations
 
-import argparse
 import sys
 
 

@@ -79,7 +79,7 @@ def _result(scene, grid, op, state, wall):
               "slip_x": -steady.slip[0] * grid.dx, "slip_y": -steady.slip[1] * grid.dx, "u_x": u[0], "u_y": u[1],
               "region": region}
     fields, stored = _stored(scene, fields, 0)
-    ro, pair = scene.rolling, scene.material_pair
+    ro = scene.rolling
     a, b = scene.semi_axes
     linear = linear_forces(scene, xi, eta, phi)
     summary = dict(state="steady", mode=ro.mode, xi=xi, eta=eta, phi=phi, direction=ro.direction,

@@ -43,7 +43,7 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
     """Roll the scene's [rolling] transient and return its RunResult (t_start: the run's perf_counter start);
     solver errors propagate to the caller (cases.run.creep_run.run_creep)."""
     c_start = time.process_time()
-    ro, pair, tol = scene.rolling, scene.material_pair, scene.solver.tol
+    ro, tol = scene.rolling, scene.solver.tol
     a, b = scene.semi_axes
     step = ro.step if ro.step is not None else scene.spacing[0]
     distance = ro.distance if ro.distance is not None else 8.0 * scene.rolling_half_length

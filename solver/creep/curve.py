@@ -6,7 +6,6 @@ are the linear theory F = G c^2 C11 xi (and C22, C23) and the saturation model o
 with t = |F_linear| / (mu Fn), |F| / (mu Fn) = t - t^2/3 + t^3/27 for t < 3 and 1 beyond.
 """
 from dataclasses import dataclass
-import math
 
 import numpy as np
 

@@ -164,7 +164,6 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
     dp[:, :, :-1] -= tau[:, :, 1:]
     lo, hi = _row_ranges(contact)
     disp = problem.displacement(dp)
-    inv_dx = 1.0 / grid.dx
     scale = float(np.max(bound[contact])) if math.isfinite(mu) else None
     change = math.inf
     for sweeps in range(1, params.max_sweeps + 1):

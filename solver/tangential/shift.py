@@ -111,7 +111,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rollcontact.bem.errors import ConvergenceError, GrossSlidingError, InputError
+from rollcontact.bem.errors import GrossSlidingError, InputError
 from rollcontact.solver.memo import ProductMemo, same
 from rollcontact.solver.tangential import _force_projection as FP, _moves
 from rollcontact.solver.tangential._tangcg import ProjectedTangCG

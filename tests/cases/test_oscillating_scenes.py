@@ -1,7 +1,6 @@
 """Scenes with loads oscillating within each period (docs/oscillating_loads.md; theory.md §11.3): the keys and
 their refusals, the dissipation in the run file, and the 3-D model against the 1-D MDR model with per-spring
 memory and against the proportional-loading closed form, without rolling."""
-import math
 
 import numpy as np
 import pytest
