@@ -234,8 +234,8 @@ def main(argv=None) -> int:
 
 def console_main():
     """The `rollcontact` command (pyproject's entry point): `main`, then, after `run`, an exit that skips the
-    interpreter's teardown. Tearing down numba's compiler and the module graph took 0.23-0.35 s after a run
-    (measured 2026-11-25, 2-core AMD EPYC; benchmarks/startup.py), 10-15 % of a paper scene's process, with nothing
+    interpreter's teardown. Tearing down numba's compiler and the module graph takes 0.23-0.35 s after a run
+    (benchmarks/startup.py), 10-15 % of a paper scene's process, with nothing
     left to do: the run file is closed and renamed into place, stdout and stderr are flushed here, and `run` starts
     no other process or thread that needs a clean-up. The other commands (sweeps with their worker pools and Dask
     clients, plots) exit normally."""
