@@ -1,4 +1,4 @@
-"""Shared pieces of the figures (`plots_run`, `plots_sweep`): reading a run for plotting, normalisations,
+"""Shared pieces of the figures (`run_figures`, `sweep_figures` and the others of `cases.plots`): reading a run for plotting, normalisations,
 colours, the seed's contact regions, centre-line sampling and saving.
 
 Normalisations (seed Eq. 9 with the consistent constants, theory.md §8.2 and pitfall P3):

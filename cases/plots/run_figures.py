@@ -8,7 +8,7 @@
   tau_x/mu p0 with the Coulomb bound mu p/(mu p0) = p/p0 and, when a full period is stored, the bound at the
   minimum pressure of the period, mu p_min/(mu p0); u_x/U0 with u_sd.
 * compare: the same maps on shared colour scales plus B - A (diverging), centre lines and histories overlaid.
-Units mm, N, MPa; normalisations as in cases/plots.py.
+Units mm, N, MPa; normalisations as in cases/plots/common.py.
 """
 from __future__ import annotations
 

@@ -57,7 +57,7 @@ _jit = nb.njit(cache=True, nogil=True, fastmath=False)
 @nb.njit(cache=True, inline="always")
 def a_tt(nrm, axx, ayy, j, i):
     """Self coefficient along the slip tangent t = (-n_y, n_x) of element (j, i): t^T diag(a_xx, a_yy) t
-    (a copy lives in `_tangential_cg`: numba's cache is per file)."""
+    (a copy, `_linearised._a_tt`, lives there: numba's cache is per file)."""
     return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
 
 

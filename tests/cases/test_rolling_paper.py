@@ -110,7 +110,7 @@ def test_shakedown_state_is_all_stick_with_the_three_regions_of_sect_3_2(fig4):
 #   perpendicular  0.4  0.3682555  0.3681619  0.3682109  -4.9e-5          1.155073        0.36326
 #   perpendicular  0.6  0.6355474  0.6360685  0.6361560  -8.8e-5          1.233845        0.60691
 # Truncation: after period 20 at f_t = 0.6 the remaining geometric tail is < 5e-6 (parallel, dx 0.1); at f_t <= 0.4
-# periods 10 and 20 agree to 1e-6. The solver tolerance (1e-8) moves u_sd by < 3e-6 (benchmarks/README, "Accuracy
+# periods 10 and 20 agree to 1e-6. The solver tolerance (1e-8) moves u_sd by < 3e-6 (benchmarks/README.md, "Accuracy
 # against speed" (c)).
 #
 # Tolerance: the paper grid's discretisation error. The largest change of u_sd when dx = dW is halved from 0.2
@@ -130,7 +130,7 @@ def test_shakedown_state_is_all_stick_with_the_three_regions_of_sect_3_2(fig4):
 #
 # Finding (not a tolerance; test_3d_kappa_differs_from_the_seed_fit): the 3-D kappa is not one number per setting.
 # At w = 0.23 it rises with f_t, parallel 0.946 / 1.002 / 1.124, perpendicular 1.124 / 1.155 / 1.234 at f_t = 0.2 /
-# 0.4 / 0.6 (over the whole Fig. 8 grid, fit_kappa gives 1.028 +- 0.012 and 1.191 +- 0.009: benchmarks/README,
+# 0.4 / 0.6 (over the whole Fig. 8 grid, fit_kappa gives 1.028 +- 0.012 and 1.191 +- 0.009: benchmarks/README.md,
 # "Sweeps"). The seed's kappa_par = 1 holds at f_t = 0.4 (1.002 +- 0.003), not at 0.2 (8 uncertainties below) or
 # 0.6 (118 above); kappa_perp lies above the seed's 1.1 at every f_t, by 0.024 / 0.055 / 0.134 (4 / 23 / 143
 # uncertainties). The converged u_sd lies -1.07 / +0.05 / +4.1 % (parallel) and +0.50 / +1.36 / +4.8 %

@@ -27,7 +27,7 @@ def _ellipse(ratio, nu, n, ny=None, normal_force=1.0):
 
 def _linear_coefficients(ratio, nu, n):
     """C11, C22, C23 of the solver: -Fx/(G c^2 xi), -Fy/(G c^2 eta), -Fy/(G c^3 phi) with G = c = 1."""
-    problem, pressure = _ellipse(ratio, nu, n)  # default tol 1e-6: forces converged to ~1e-8 (benchmarks/README)
+    problem, pressure = _ellipse(ratio, nu, n)  # default tol 1e-6: forces converged to ~1e-8 (benchmarks/README.md)
     fx = solve_steady(problem, pressure, math.inf, xi=1e-3).force[0]
     fy = solve_steady(problem, pressure, math.inf, eta=1e-3).force[1]
     fs = solve_steady(problem, pressure, math.inf, phi=1e-3).force[1]

@@ -1,4 +1,4 @@
-"""1-D MDR simulator of oscillating rolling (solver.mdr, mdr_step, _mdr_kernels, mdr_bisection; theory.md §8.2-8.3, seed Eqs. 4-5, 12).
+"""1-D MDR simulator of oscillating rolling (solver.mdr: step, _kernels, bisection; theory.md §8.2-8.3, seed Eqs. 4-5, 12).
 
 Scene of the seed (Table 1, pitfalls P1-P5): R = 40 mm, mu = 0.93, Fn = 21.19 N, steel on rubber.
 Runtime: every run below takes 3-150 ms (numba kernel, ~40 us per step at 4001 springs).
