@@ -126,13 +126,17 @@ class RunView:
 
     @property
     def label(self) -> str:
-        s = "W ∥ Ft" if self.setting == "parallel" else "W ⊥ Ft" if self.setting == "perpendicular" \
-            else f"W at {self.angle:g}° to Ft"
+        """The rolling setting ('W ∥ Ft', 'W ⊥ Ft', 'W at 30° to Ft'), or 'no rolling' for w = 0."""
+        if self.w == 0:
+            s = "no rolling"
+        else:
+            s = "W ∥ Ft" if self.setting == "parallel" else "W ⊥ Ft" if self.setting == "perpendicular" \
+                else f"W at {self.angle:g}° to Ft"
         return s + (" (MDR 1-D)" if self.is_mdr else "")
 
     @property
     def title(self) -> str:
-        return f"{self.label}:  $f_t$ = {self.f_t:.3g}, $w$ = {self.w:.3g}  ({self.state})"
+        return f"{self.label}:  $f_t$ = {self.f_t:.3g}, $w$ = {self.w:.3g}  ({self.state.replace('_', ' ')})"
 
     # --- history ---------------------------------------------------------------------------------
     @property
