@@ -195,7 +195,7 @@ def test_main_cli_registers_plot_and_compare():
 
 def test_history_of_a_reversed_load_shows_its_negative_shift_and_no_mdr_lines(tmp_path):
     """load.levels = [0, -f_t] (Mindlin-Deresiewicz reversal, then rolling): u goes negative, so the axis must not
-    start at 0 (it did: the whole oscillation was cut off), and the MDR u_sd of a monotonic ramp to f_t do not
+    start at 0 (the whole oscillation would be cut off), and the MDR u_sd of a monotonic ramp to f_t do not
     apply. A static run's axis counts steps, not periods."""
     from rollcontact.cases.plots.run_figures import history_figure
     rolled = open_run(_run(tmp_path / "rev.h5", "load.ramp_steps=2", "load.levels=[0.0, -0.46]"))

@@ -109,8 +109,8 @@ def test_override_of_an_alternative_replaces_the_other_spelling():
 @pytest.mark.parametrize("first, second", [("load.Ft=5", "load.ft=0.3"), ("motion.w=0.2", "motion.W=1.0"),
                                            ("geometry.Rx=20", "geometry.R=40")])
 def test_both_spellings_in_one_set_of_overrides_are_refused_naming_both(first, second):
-    """Within one command the two spellings of a quantity contradict each other (as in a scene file); the last one
-    used to win silently. Repeating the same key is an ordinary override (the last wins)."""
+    """Within one command the two spellings of a quantity contradict each other (as in a scene file): neither may win
+    silently. Repeating the same key is an ordinary override (the last wins)."""
     with pytest.raises(SceneError, match=rf"--set '{first}' and --set '{second}': give either"):
         default_scene().with_overrides([first, second])
     assert default_scene().with_overrides(["load.ft=0.3", "load.ft=0.4"]).f_t == 0.4
@@ -158,8 +158,7 @@ def test_readme_scene_table_states_the_defaults_of_cases_scene():
 
 
 def test_w_and_W_share_one_range():
-    """w = W/a was limited to [0, 1] while W = 10 mm (w = 2.09) ran: both are open above now (the step limit
-    bounds them)."""
+    """w = W/a is open above like W (W = 10 mm is w = 2.09 on the paper scene); the step limit bounds both."""
     s = default_scene().with_overrides(["motion.w=1.5"])
     assert s.amplitude == pytest.approx(1.5 * s.contact_radius)
     assert default_scene().with_overrides(["motion.W=10"]).amplitude == 10.0

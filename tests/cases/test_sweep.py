@@ -351,9 +351,9 @@ def test_limit_search_refuses_varying_both_or_neither_coordinate(base, tmp_path)
 
 
 def test_a_worker_still_compiles_numba_code_after_its_set_up():
-    # Regression: the worker set-up used to change NUMBA_NUM_THREADS after numba was imported, and every later
-    # compilation in that worker then raised RuntimeError - which a sweep meets whenever numba's on-disk cache
-    # misses (a fresh install, or edited sources): all runs failed. A fresh njit function forces a compilation.
+    # A worker set-up that changes NUMBA_NUM_THREADS after numba is imported makes every later compilation in that
+    # worker raise RuntimeError, which a sweep meets whenever numba's on-disk cache misses (a fresh install, or
+    # edited sources): all runs would fail. A fresh njit function forces a compilation.
     code = ("import os, numba; from rollcontact.cases.sweep.workers import _worker_init; _worker_init(os.getpid()); "
             "print(numba.njit(lambda x: x + 1)(1))")
     out = subprocess.run([sys.executable, "-c", code], cwd=Path(__file__).resolve().parents[2],
