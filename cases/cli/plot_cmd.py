@@ -3,6 +3,8 @@
     rollcontact plot RUN.h5 [--step N] [-o DIR]        history (seed Fig. 4), maps (Figs. 5-6), centre lines
                                                       (Figs. 5, 7) at a stored step (default: the last one)
     rollcontact plot OUTDIR [-o DIR]                   sweep: u_sd(f_t) (Fig. 8), limits (Fig. 9), du (Fig. 11)
+                                                      ([wheelrail] runs: the patches; a sweep over wheelrail.y:
+                                                      the contact-point diagram and the forces against y)
     rollcontact compare A.h5 B.h5 [--step N] [-o DIR]  both runs on shared scales, B - A, overlaid histories
 
 Default output folder: `plots/` next to a run file, `OUTDIR/plots/` for a sweep folder OUTDIR. Every written file
@@ -38,6 +40,16 @@ def _creep_run(target: Path):
     return data if is_creep_run(data) else None
 
 
+def _wheelrail_run(target: Path):
+    """The result of a [wheelrail] run file (cases.plots.wheelrail_figures), else None."""
+    from rollcontact.cases.plots.common import PlotError
+    from rollcontact.cases.results.hdf5 import read_run_file, stored_summary
+    stored = stored_summary(target) if target.is_file() else None
+    if stored is None or "n_patches" not in stored["summary"]:
+        return None
+    return read_run_file(target, PlotError, str(target))
+
+
 def plot_handler(args) -> int:
     """`rollcontact plot TARGET`: one run file or a sweep folder."""
     from rollcontact.cases.plots.common import PlotError, open_run
@@ -51,6 +63,9 @@ def plot_handler(args) -> int:
             if args.step is not None:
                 raise PlotError("--step applies to a run file, not to a sweep folder")
             paths = plot_folder(target, out_dir, notes, overwrite=args.overwrite)
+        elif (wheelrail := _wheelrail_run(target)) is not None:
+            from rollcontact.cases.plots.wheelrail_figures import plot_wheelrail_run
+            paths = plot_wheelrail_run(wheelrail, out_dir, target.stem, overwrite=args.overwrite, notes=notes)
         elif _creep_run(target) is not None:
             from rollcontact.cases.plots.creep_figures import plot_creep_run
             paths = plot_creep_run(_creep_run(target), out_dir, target.stem, overwrite=args.overwrite)

@@ -382,6 +382,9 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
     and the phase figures of cases.plots.phase_figures when its runs differ in load.phase; prints the fitted
     kappas."""
     folder = Path(folder)
+    from rollcontact.cases.plots.wheelrail_figures import is_wheelrail_folder, plot_wheelrail_folder
+    if is_wheelrail_folder(folder):                     # a sweep over a [wheelrail] scene
+        return plot_wheelrail_folder(folder, Path(out_dir) if out_dir else folder, overwrite, out)
     points = read_folder(folder, notes)
     out_dir = Path(out_dir) if out_dir else folder
     limits_path = folder / "limits.csv"

@@ -13,6 +13,9 @@ Layout (public contract; later versions add to it, never rename):
                         ratcheting run, say) is NaN, or -1 for the counts in SUMMARY_COUNTS, as in a
                         sweep's summary.h5 (readers also accept the text 'none', which the first files of
                         version 0.1.0 wrote)
+    /patches/<k>/       a [wheelrail] run's contact patches k = 0, 1, ...: grid/x, grid/y and fields/<name>
+                        (1, ny, nx) as at the root, in the patch's tangent plane; attrs: the patch's values
+                        (cases.results.run_result.PATCH_UNITS)
 
 A reader that opens a file sees either nothing (no file) or a complete file: the rename is atomic on
 POSIX file systems. A run that fails still writes what it computed, with status = 'failed'.
@@ -30,7 +33,7 @@ import zlib
 import h5py
 import numpy as np
 
-from rollcontact.cases.results.run_result import UNITS, RunResult
+from rollcontact.cases.results.run_result import UNITS, PatchData, RunResult
 
 #: deflate level of the field snapshots (h5py's default for gzip)
 GZIP_LEVEL = 4
@@ -80,6 +83,40 @@ def fill_run(h5, data: RunResult, chunks: dict, growable: bool = False):
                                                     else {}))
     _write_fields(h5.create_group("fields"), data, chunks, growable)
     write_summary_attrs(h5.create_group("summary").attrs, data.summary)
+    if data.patches:
+        _write_patches(h5.create_group("patches"), data.patches)
+
+
+def _write_patches(group, patches):
+    """/patches/<k>/: grid, fields (one snapshot, gzip) and the patch's values as attributes."""
+    for k, patch in enumerate(patches):
+        g = group.create_group(str(k))
+        grid = g.create_group("grid")
+        _dataset(grid, "x", np.asarray(patch.x))
+        _dataset(grid, "y", np.asarray(patch.y))
+        fields = g.create_group("fields")
+        _dataset(fields, "step", np.zeros(1 if patch.fields else 0, dtype=np.int64))
+        for name, values in patch.fields.items():
+            values = np.asarray(values)[None]
+            _dataset(fields, name, values, chunks=values.shape, compression="gzip", compression_opts=GZIP_LEVEL)
+        for key, value in patch.values.items():
+            g.attrs[key] = _attr_value(key, value)
+        if patch.history:
+            history = g.create_group("history")
+            for name, values in patch.history.items():
+                _dataset(history, name, np.asarray(values))
+
+
+def _read_patches(h5) -> list:
+    if "patches" not in h5:
+        return []
+    out = []
+    for k in sorted(h5["patches"], key=int):
+        g = h5["patches"][k]
+        fields = {n: v[0] for n, v in ((n, g["fields"][n][()]) for n in g["fields"] if n != "step") if len(v)}
+        history = {n: v[()] for n, v in g["history"].items()} if "history" in g else {}
+        out.append(PatchData(g["grid/x"][()], g["grid/y"][()], fields, summary_from_attrs(g.attrs), history))
+    return out
 
 
 def save_image(path, image: bytes) -> Path:
@@ -238,6 +275,7 @@ def read_run(path) -> RunResult:
             summary=summary_from_attrs(h5["summary"].attrs),
             attrs={k: _py(v) for k, v in h5.attrs.items() if k not in _ROOT_ATTRS},
             path=Path(path),
+            patches=_read_patches(h5),
         )
 
 

@@ -61,8 +61,66 @@ SUBSURFACE_UNITS = {
 }
 SUBSURFACE_NAMES = tuple(SUBSURFACE_UNITS)
 
+#: /summary of a [wheelrail] run (cases.run.wheelrail_run; docs/wheelrail.md): arrays over the patches (in increasing
+#: y of the side frame, i.e. from the track centre towards the field side) and the totals. Track frame: x along the
+#: direction of travel, y to the left, z up; each patch in its own axes (x along the track, n the rail's normal into
+#: the wheel, s = n x x). Forces and moments are those on the wheel (Kalker's body 1).
+#: patch_y_rail, patch_y_wheel: the patch's reference point in the rail's and the wheel's profile coordinates (y to the
+#: field side); patch_x: its x in the track frame (ahead of the wheelset centre > 0); patch_contact_angle: the
+#: rotation about x from the track's z to n (negative on the right rail's gauge side, positive on the left's);
+#: patch_rolling_radius: the wheel's radius at the reference; patch_Fn, patch_Fx, patch_Fy: normal force and the
+#: tangential forces along x and s; patch_Mz: moment about n at the reference; patch_xi, patch_eta, patch_phi: the
+#: creepages and spin there (Kalker's convention); patch_pmax: peak pressure; patch_length, patch_width: the contact's
+#: extent along x and s; patch_penetration: the largest interpenetration of the undeformed surfaces along n;
+#: patch_angle_spread: the range of the rail's surface angle across the contact (the planar patch takes one angle).
+#: F_track_x, F_track_y, F_track_z: the total force on the wheel in the track frame (F_track_z = Fz in balance);
+#: z_ws: the wheelset centre's height above its nominal position (the axle wheel_radius above the rail's top);
+#: lowering: how far the wheel is lowered beyond its first touch of the rail; xi_nominal: the longitudinal creepage at
+#: the nominal rolling radius; omega: the wheelset's rotation (with a speed); outer_iterations: normal / tangential
+#: alternations of the vertical balance.
+WHEELRAIL_SUMMARY_UNITS = {
+    "n_patches": "-", "patch_y_rail": "mm", "patch_y_wheel": "mm", "patch_x": "mm", "patch_contact_angle": "rad",
+    "patch_rolling_radius": "mm", "patch_Fn": "N", "patch_Fx": "N", "patch_Fy": "N", "patch_Mz": "N mm",
+    "patch_xi": "-", "patch_eta": "-", "patch_phi": "1/mm", "patch_pmax": "MPa", "patch_length": "mm",
+    "patch_width": "mm", "patch_penetration": "mm", "patch_angle_spread": "rad", "F_track_x": "N", "F_track_y": "N", "F_track_z": "N",
+    "z_ws": "mm", "lowering": "mm", "xi_nominal": "-", "omega": "rad/s", "side": "-", "outer_iterations": "-",
+    "cpu_time": "s",
+}
+SUMMARY_UNITS.update(WHEELRAIL_SUMMARY_UNITS)
+
+#: /patches/<k>/ of a [wheelrail] run: the layout of the file's root for one patch (grid/x, grid/y in the patch's
+#: tangent plane: x along the track, y along s; fields/<name> of shape (1, ny, nx) with FIELD_UNITS, the wheel taking
+#: the sphere's part and the rail the substrate's, and gap, the undeformed distance h(x, s) of wheel and rail along n;
+#: fields/step = [0]; a transient run: the last step on the world-fixed grid, its history/<name> per step: step, W_x
+#: the contact centre, Fn, F_x, F_y the force on the rail, M_z on the wheel, stick_area, iterations, cpu_time); its
+#: attributes are the patch's values (PATCH_UNITS).
+PATCH_FIELD_UNITS = {"gap": "mm"}
+PATCH_UNITS = {"y_rail": "mm", "y_wheel": "mm", "x_track": "mm", "contact_angle": "rad", "rolling_radius": "mm",
+               "Fn": "N", "Fx": "N", "Fy": "N", "Mz": "N mm", "xi": "-", "eta": "-", "phi": "1/mm", "pmax": "MPa",
+               "length": "mm", "width": "mm", "penetration": "mm", "angle_spread": "rad", "dx": "mm", "dy": "mm",
+               "normal_iterations": "-", "sweeps": "-", "contact_elements": "-", "stick_elements": "-",
+               "Fx_steady": "N", "Fy_steady": "N", "Mz_steady": "N mm", "distance": "mm", "step": "mm", "steps": "-"}
+#: A transient [wheelrail] run ([rolling] mode = "transient") reports the patches' forces after rolling; the steady
+#: state's are PATCH_UNITS' Fx_steady, Fy_steady, Mz_steady and the summary's patch_Fx_steady, ... below.
+SUMMARY_UNITS.update({"patch_Fx_steady": "N", "patch_Fy_steady": "N", "patch_Mz_steady": "N mm", "mode": "-",
+                      "distance": "mm", "step": "mm"})
+
 #: Units of every stored dataset (its 'units' attribute in HDF5).
-UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
+UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FIELD_UNITS, **PATCH_FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm",
+         "y": "mm", "z": "mm"}
+
+
+@dataclass
+class PatchData:
+    """One contact patch of a [wheelrail] run: its grid `x` (nx,), `y` (ny,) (mm, in its tangent plane), `fields`
+    {name: (ny, nx)} (FIELD_UNITS, PATCH_FIELD_UNITS), `values` {name: value} (PATCH_UNITS) and, rolled transiently,
+    its `history` {name: one value per step} (HISTORY_UNITS, CREEP_HISTORY_UNITS)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    fields: dict = field(default_factory=dict)
+    values: dict = field(default_factory=dict)
+    history: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -79,6 +137,7 @@ class RunResult:
       None where a value does not apply (u_sd of a ratcheting run).
     * `status`: 'complete', 'failed' (then `error` says why) or 'incomplete' (a checkpoint of a run still going,
       or killed); `path`: the HDF5 file, None if not written.
+    * `patches`: the contact patches of a [wheelrail] run (PatchData), empty for the others.
     """
 
     scene_toml: str
@@ -98,6 +157,7 @@ class RunResult:
     #: what a run with stresses=True (`run --stresses`) wrote to /subsurface: 'steps', 'z' (mm), 'seconds' (computing),
     #: 'computed' and 'reused' (the steps this run computed, and those computed before a restart); empty otherwise
     subsurface: dict = field(default_factory=dict, repr=False, compare=False)
+    patches: list = field(default_factory=list)
 
     @property
     def scene(self):

@@ -57,6 +57,9 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
     OutputInUseError when another process writes `out` (or the partial file beside it). A symbolic link is
     followed: the file it points to is the output.
     """
+    if stresses and scene.wheelrail_on:
+        raise InputError("--stresses (stresses=True): a [wheelrail] run stores its patches in /patches, each in its "
+                         "own tangent plane; the subsurface stresses of its patches are not computed")
     if out is None:
         if stresses:
             raise InputError("--stresses (stresses=True): the stresses go into the run's file; give an output file")
@@ -70,7 +73,8 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
             locks.append(OutputLock(target, label=f"{label} (its partial file {target.name})").acquire())
         for path in (out, target):
             remove_stale_temporaries(path)
-        checkpoints = Checkpoints(target, attrs) if scene.solver.fidelity == "bem" and not scene.rolling_on else None
+        stepped = scene.solver.fidelity == "bem" and not (scene.rolling_on or scene.wheelrail_on)
+        checkpoints = Checkpoints(target, attrs) if stepped else None
         stepwise = StepStresses(scene, target, depths, restart, progress) if stresses else None
         try:
             result = _run_model(scene, progress, restart, checkpoints, stepwise)
@@ -91,6 +95,11 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
 
 
 def _run_model(scene, progress, restart, checkpoints, stresses) -> RunResult:
+    if scene.wheelrail_on:
+        if restart is not None:
+            raise InputError("--restart: a [wheelrail] scene is solved in one step; there is nothing to restart")
+        from rollcontact.cases.run.wheelrail_run import run_wheelrail
+        return run_wheelrail(scene, progress=progress)
     if scene.rolling_on:
         if restart is not None:
             raise InputError("--restart: a [rolling] scene is solved in one step; there is nothing to restart")

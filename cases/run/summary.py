@@ -88,6 +88,9 @@ def format_summary(result: RunResult) -> str:
     """Short human summary printed by `rollcontact run`."""
     d = result
     s, h = d.summary, d.history
+    if "n_patches" in s or (d.status == "failed" and d.scene.wheelrail_on):
+        from rollcontact.cases.run.wheelrail_run import format_wheelrail
+        return format_wheelrail(d)
     if s.get("state") in ("steady", "transient", "failed") and "xi" in s:
         return _format_creep(d)
     lines = []

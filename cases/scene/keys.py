@@ -124,6 +124,51 @@ class Rolling:
 
 
 @dataclass
+class WheelRail:
+    """A wheel on its rail (solver.wheelrail; docs/wheelrail.md): two lateral profiles, the track and the wheelset,
+    the wheelset's position, load and motion. Profiles: y positive towards the field side, z upwards (mm). Track
+    frame for yaw and roll: x along the direction of travel, y to the left, z up (right-hand rule)."""
+    wheel_profile: str | None = _spec(None, doc="wheel profile file: two columns y, z (mm; CSV or white space), or "
+                                                "SIMPACK .prw (required)")
+    rail_profile: str | None = _spec(None, doc="rail profile file: two columns y, z (mm), or SIMPACK .prr (required)")
+    wheel_sha256: str | None = _spec(None, doc="SHA-256 of the wheel profile file (filled in when left out, checked "
+                                               "when given)")
+    rail_sha256: str | None = _spec(None, doc="SHA-256 of the rail profile file (filled in when left out, checked "
+                                              "when given)")
+    wheel_radius: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                       doc="nominal rolling radius at the wheel profile's reference point y = 0 "
+                                           "(required)")
+    rail_inclination: float | None = _spec(None, -0.2, 0.2, unit="rad",
+                                           doc="inclination of the rail towards the track centre (0.025 for 1:40; 0 "
+                                               "for a profile drawn inclined, as the Manchester benchmark's; "
+                                               "required)")
+    side: str | None = _spec(None, choices=("left", "right"), doc="which wheel and rail of the track (required)")
+    gauge: float = _spec(1435.0, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                         doc="track gauge: distance of the rails' inner faces at gauge_height below their top")
+    gauge_height: float = _spec(14.0, 0, INF, hi_open=True, unit="mm",
+                                doc="depth below the top of the rail where the gauge is measured (0: no gauge point, "
+                                    "the rail profile's origin at gauge / 2 from the track centre)")
+    back_to_back: float = _spec(1360.0, 0, INF, lo_open=True, hi_open=True, unit="mm",
+                                doc="distance of the wheels' flange backs")
+    flange_back: float | None = _spec(None, -INF, INF, lo_open=True, hi_open=True, unit="mm",
+                                      doc="y of the flange back in the wheel profile's coordinates (-70 for the "
+                                          "published S1002; required)")
+    y: float = _spec(0.0, -100, 100, unit="mm", doc="lateral displacement of the wheelset from its centred position, "
+                                                    "positive towards the field side of this rail")
+    yaw: float = _spec(0.0, -0.2, 0.2, unit="rad", doc="wheelset yaw angle (about the track's upward z)")
+    roll: float = _spec(0.0, -0.2, 0.2, unit="rad", doc="wheelset roll angle (about the track's forward x)")
+    Fz: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="N",
+                             doc="vertical load on this wheel; the wheelset's height is solved for it (required)")
+    speed: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm/s",
+                                doc="forward speed of the wheelset (needed with omega)")
+    xi: float | None = _spec(None, -1, 1, doc="longitudinal creepage at the nominal rolling radius, (V - omega r0) / "
+                                              "((V + omega r0) / 2) (default 0 without omega)")
+    omega: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="rad/s",
+                                doc="angular velocity of the wheelset about its axle, positive rolling forward "
+                                    "(with speed; instead of xi)")
+
+
+@dataclass
 class GridSpec:
     dx: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                              doc="element size in x (default: the smaller Hertz semi-axis / 12, 2 digits)")
@@ -149,9 +194,9 @@ class Output:
 
 
 SECTIONS = {"materials": Materials, "geometry": Geometry, "load": Load, "motion": Motion, "rolling": Rolling,
-            "grid": GridSpec, "solver": SolverSpec, "output": Output}
+            "wheelrail": WheelRail, "grid": GridSpec, "solver": SolverSpec, "output": Output}
 SECTION_ATTR = {"materials": "materials", "geometry": "geometry", "load": "load", "motion": "motion",
-                "rolling": "rolling", "grid": "grid", "solver": "solver", "output": "output"}
+                "rolling": "rolling", "wheelrail": "wheelrail", "grid": "grid", "solver": "solver", "output": "output"}
 
 
 def check_key(sec, f, value):

@@ -13,6 +13,8 @@ Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contr
     [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction; distance, step
                 (mm) and initial ("rest", "cattaneo") of a transient; speed (mm/s): rolling on with creepage and
                 spin, in place of [motion] and a tangential load (Kalker's convention, solver.creep)
+    [wheelrail] a wheel on its rail from two profile files, in place of [geometry], [motion], [rolling] and the loads of
+                [load] (cases.scene.wheelrail, docs/wheelrail.md)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
@@ -40,7 +42,8 @@ from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.geometry import (
     SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
-    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, check_key)
+    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, WheelRail,
+    check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
@@ -65,6 +68,7 @@ class Scene(SceneLimits):
     load: Load = field(default_factory=Load)
     motion: Motion = field(default_factory=Motion)
     rolling: Rolling = field(default_factory=Rolling)
+    wheelrail: WheelRail = field(default_factory=WheelRail)
     grid: GridSpec = field(default_factory=GridSpec)
     solver: SolverSpec = field(default_factory=SolverSpec)
     output: Output = field(default_factory=Output)
@@ -95,6 +99,8 @@ class Scene(SceneLimits):
             kwargs = {k: check_key(sec, names[k], v) for k, v in values.items()}
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
+        if "wheelrail" in data or scene.wheelrail_on:
+            return scene._wheelrail_checked(data, run_limits)
         scene._check_rolling(data)
         scene._check_consistency()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
@@ -124,19 +130,25 @@ class Scene(SceneLimits):
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene {name}: not valid TOML ({exc})") from None
-        geometry = data.get("geometry")
-        if base is not None and isinstance(geometry, dict) and isinstance(geometry.get("path"), str):
-            geometry["path"] = str(Path(base) / Path(geometry["path"]).expanduser())
+        for sec, key in (("geometry", "path"), ("wheelrail", "wheel_profile"), ("wheelrail", "rail_profile")):
+            table = data.get(sec)
+            if base is not None and isinstance(table, dict) and isinstance(table.get(key), str):
+                table[key] = str(Path(base) / Path(table[key]).expanduser())
         return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
-        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]."""
+        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]; a
+        [wheelrail] scene has no [motion] or [geometry] and only load.mu and grid.dx, dy."""
         out = {}
+        skip = ("geometry", "motion") + (() if self.rolling_on else ("rolling",)) if self.wheelrail_on else \
+            ("wheelrail", "motion" if self.rolling_on else "rolling")
         for sec in SECTIONS:
-            if sec == ("motion" if self.rolling_on else "rolling"):
+            if sec in skip:
                 continue
             obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
+            if self.wheelrail_on and sec in ("load", "grid", "rolling"):
+                vals = {k: v for k, v in vals.items() if k in ("mu", "dx", "dy", "mode", "distance", "step", "initial")}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
         return out
 
@@ -189,6 +201,24 @@ class Scene(SceneLimits):
                 if name != "shape" and name not in keep and f"geometry.{name}" not in given:
                     del data["geometry"][name]
         return Scene.from_dict(data, name=self.name)
+
+    @property
+    def wheelrail_on(self) -> bool:
+        """True for a wheel-rail scene ([wheelrail], cases.scene.wheelrail)."""
+        return self.wheelrail != WheelRail()
+
+    def _wheelrail_checked(self, data: dict, run_limits: bool) -> "Scene":
+        """The checks of a [wheelrail] scene (cases.scene.wheelrail), its files' checksums and default grid (not the
+        grid's least resolution: a flange root's contact is narrow by nature; the run reports each patch's cells)."""
+        from rollcontact.cases.scene import wheelrail
+        wheelrail.check_sections(data)
+        wheelrail.check_keys(self)
+        if run_limits:
+            self.wheelrail, filled = wheelrail.checked_files(self.wheelrail)
+            self.derived = frozenset(filled)
+            self._resolve_resolution()
+            wheelrail.check_coverage(self)
+        return self
 
     @property
     def rolling_on(self) -> bool:
@@ -311,8 +341,9 @@ class Scene(SceneLimits):
 
     @property
     def shape(self) -> str:
-        """The geometry's shape ('sphere', 'ellipsoid', 'cone', 'power', 'flat_rounded'; cases.scene.geometry)."""
-        return resolve_shape(self.geometry)
+        """The geometry's shape ('sphere', 'ellipsoid', 'cone', 'power', 'flat_rounded'; cases.scene.geometry), or
+        'wheelrail'."""
+        return "wheelrail" if self.wheelrail_on else resolve_shape(self.geometry)
 
     @property
     def profile(self):
@@ -354,7 +385,11 @@ class Scene(SceneLimits):
     @property
     def semi_axes(self) -> tuple[float, float]:
         """Contact semi-axes (mm) along x and y: exact for a sphere and the axisymmetric shapes (a, a),
-        Hertz's estimate c (Rx/Ry)^(+-1/3) for an ellipse, an estimate for the cylinder (cylinder_semi_axes)."""
+        Hertz's estimate c (Rx/Ry)^(+-1/3) for an ellipse, an estimate for the cylinder (cylinder_semi_axes), Hertz's
+        at the first touch for [wheelrail] (cases.scene.wheelrail.estimate)."""
+        if self.wheelrail_on:
+            from rollcontact.cases.scene.wheelrail import estimate
+            return estimate(self)[:2]
         if self.shape == "cylinder":
             return cylinder_semi_axes(self.geometry, self.material_pair.E_star, self.load.Fn)
         if self.shape not in ("sphere", "ellipsoid"):
@@ -394,6 +429,8 @@ class Scene(SceneLimits):
     def speed(self) -> float | None:
         """Rolling speed V (mm/s): [rolling] speed in a [rolling] scene, else [motion] speed; None without one
         (the scene is time-independent)."""
+        if self.wheelrail_on:
+            return self.wheelrail.speed
         return self.rolling.speed if self.rolling_on else self.motion.speed
 
     @property
@@ -407,7 +444,7 @@ class Scene(SceneLimits):
         of the path takes dt, the loading steps included: step n ends at time n dt, step 0 (the normal load from
         the unloaded state) at t = 0."""
         V = self.speed
-        if V is None:
+        if V is None or self.wheelrail_on:
             return None
         if self.rolling_on:
             if self.rolling.mode != "transient":

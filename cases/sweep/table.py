@@ -32,13 +32,19 @@ periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself;
 #: sphere in Kalker's convention, and the stick fraction of the contact.
 CREEP_COLUMNS = ("xi", "eta", "phi", "F_x", "F_y", "M_z", "stick_fraction")
 
+#: Further columns of a sweep over a [wheelrail] scene (cases.run.wheelrail_run), added only when its runs have them:
+#: the number of contact patches, the total force on the wheel in the track frame (N) and the wheelset centre's height
+#: above its nominal position (mm). The patches themselves are in the run files (/summary patch_* arrays).
+WHEELRAIL_COLUMNS = ("n_patches", "F_track_x", "F_track_y", "F_track_z", "z_ws")
+
 #: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
 COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "U_perp": "mm", "dU_perp_per_period": "mm",
-                "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm"}
+                "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm",
+                "F_track_x": "N", "F_track_y": "N", "F_track_z": "N", "z_ws": "mm"}
 _FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "U_perp", "dU_perp_per_period",
                   "dissipation_per_period", "u_stat", "wall_time")
-_INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations")
+_INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations", "n_patches")
 
 
 def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS, attrs=None):
@@ -53,6 +59,8 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
     rows = sorted(rows, key=lambda r: r.get("index", 0))
     if columns is SUMMARY_COLUMNS and any(r.get("F_x") is not None for r in rows):
         columns = SUMMARY_COLUMNS + CREEP_COLUMNS      # a sweep over a [rolling] scene
+    elif columns is SUMMARY_COLUMNS and any(r.get("n_patches") is not None for r in rows):
+        columns = SUMMARY_COLUMNS + WHEELRAIL_COLUMNS  # a sweep over a [wheelrail] scene
     header = list(keys) + [c for c in columns if c not in keys]
     tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
     try:
