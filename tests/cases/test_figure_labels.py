@@ -3,12 +3,13 @@
 Every family of figures of the README walkthrough and the study pages is drawn from small real runs (coarse grids,
 a few periods; ~20 s on a quiet machine): `plot` of a run (history, maps, centre lines; seed Figs. 4-7), of a
 ratcheting run, of a Mindlin-Deresiewicz run (history and loads), of a run with subsurface stresses, of a
-[rolling] run; `compare`; `plot` of a sweep folder (u_sd, limits with limit-search brackets, ratcheting, the
-alignment panels), of a phase sweep and of a phase limit search (docs/oscillating_loads.md), of a cone sweep
-(docs/shapes.md); `creep-curve`. Each figure is checked as it is saved: the text the renderer actually draws
-(titles, axis and tick labels, legends, annotations, colour-bar labels) is measured with
-`Text.get_window_extent`, and two boxes overlapping by more than OVERLAP_PX in both directions, or a box leaving
-the figure by more than that, is a defect reported with both texts.
+[rolling] run, of a wheel-rail run; `compare`; `plot` of a sweep folder (u_sd, limits with limit-search brackets,
+ratcheting, the alignment panels), of a phase sweep and of a phase limit search (docs/oscillating_loads.md), of a
+cone sweep (docs/shapes.md), of a sweep over a wheel's lateral displacement (docs/wheelrail.md); `creep-curve`.
+Each figure is checked as it is saved: the text the renderer actually draws (titles, axis and tick labels,
+legends, annotations, colour-bar labels) is measured with `Text.get_window_extent`. Two boxes overlapping by more
+than OVERLAP_PX in both directions, a box leaving the figure, and a data label (an annotation) crossing the frame
+of its axes or drawn over a curve or a marker are defects, reported with the texts.
 """
 from __future__ import annotations
 
@@ -167,16 +168,20 @@ def make_inputs(root: Path):
          "motion.angle=0,90", *COARSE, "-o", root / "cone_sweep", "--jobs", "1", "-q")
     # rolling with creepage: a steady run
     _cli("run", ROOT / "cases" / "creep_steady.toml", *CREEP, "-q", "-o", runs / "creep.h5")
+    # a wheel on a rail (docs/wheelrail.md): one position with two patches, a sweep over the lateral displacement
+    wheelrail = ROOT / "cases" / "mbench_s1002_uic60.toml"
+    _cli("run", wheelrail, "--set", "wheelrail.y=5.5", "-q", "-o", runs / "y55.h5")
+    _cli("sweep", wheelrail, "--vary", "wheelrail.y=0,5.5,10", "-o", root / "sweep_y", "--jobs", "1", "-q")
 
 
 def draw_all(root: Path, out: Path) -> dict:
     """Every figure the CLI draws from make_inputs' files, into `out`: {figure stem: defects}."""
     runs = root / "runs"
     with checked_figures() as found:
-        for name in ("perp", "perp_rat", "md", "creep"):
+        for name in ("perp", "perp_rat", "md", "creep", "y55"):
             _cli("plot", runs / f"{name}.h5", "-o", out, "--overwrite")
         _cli("compare", runs / "par.h5", runs / "perp.h5", "-o", out, "--overwrite")
-        for folder in ("sweep", "osc_ft", "osc_lim", "cone_sweep"):
+        for folder in ("sweep", "osc_ft", "osc_lim", "cone_sweep", "sweep_y"):
             _cli("plot", root / folder, "-o", out, "--overwrite")
         _cli("creep-curve", ROOT / "cases" / "creep_steady.toml", *CREEP, "--points", "5", "-o", out, "--overwrite")
     return found
@@ -203,6 +208,7 @@ FAMILIES = {
     "phase": ["osc_ft_phase", "osc_lim_phase_limits"],
     "shape": ["cone_sweep_usd"],
     "creep": ["creep_maps", "creep_steady_creep_xi"],
+    "wheelrail": ["y55_wheelrail", "sweep_y_contact_points", "sweep_y_forces"],
 }
 
 
