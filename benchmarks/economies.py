@@ -58,7 +58,7 @@ def grid_economy():
     rows = []
     for W in (1.2, 2.0, 3.4):
         for angle in (90, 0):
-            scene = default_scene().with_overrides([f"motion.W={W}", f"motion.angle={angle}"])
+            scene = default_scene().with_overrides([f"motion.W={W}", f"motion.angle={angle}"], replaces=("motion.W",))
             path = scene_path(scene)
             g = scene_grid(scene, path)
             a, m, dx = scene.contact_radius, scene.grid.margin, scene.grid.dx

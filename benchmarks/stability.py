@@ -139,7 +139,8 @@ def rolling_case(group, label, overrides, kappa=None, periods=None):
         if item.startswith("grid.dx=") and not any(o.startswith("grid.dy=") for o in overrides):
             overrides.append("grid.dy=" + item.split("=", 1)[1])
     scene = default_scene().with_overrides(overrides + ["output.fields=reversals"]
-                                           + ([f"motion.periods={periods}"] if periods else []))
+                                           + ([f"motion.periods={periods}"] if periods else []),
+                                           replaces=("motion.W",))   # the amplitude in mm, over the scene's w
     row = dict(group=group, label=label, kind="rolling", overrides=list(overrides), f_t=scene.f_t,
                w=scene.amplitude / scene.contact_radius, angle=scene.motion.angle, dx=scene.grid.dx,
                dW=scene.rolling_step, beta=scene.material_pair.beta, mu=scene.load.mu)

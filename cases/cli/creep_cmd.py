@@ -5,12 +5,10 @@
 The scene's [rolling] creepages are replaced by a range of the one given with --of (the others zero): --points
 values geometrically from 0.02 to --max times its saturation creepage (cases.run.creep_curve). Writes
 DIR/<scene>_creep_<of>.csv and .png/.pdf (default DIR: creep/ in the current folder) and prints their paths.
-Exit codes: 0 written, 2 bad input (the scene has no [rolling], coupled materials, a file exists).
+Exit codes: 0 written, 2 bad input (the scene has no [rolling] or a transient one, coupled materials, a file
+exists), 1 a file that could not be written. Over `rollcontact.creep_curve` (cases.run.creep_curve).
 """
 from __future__ import annotations
-
-from pathlib import Path
-import time
 
 
 def register(subparsers):
@@ -34,33 +32,7 @@ def register(subparsers):
 
 
 def creep_curve_handler(args) -> int:
-    import numpy as np
-    from rollcontact.bem.errors import InputError, OutputExistsError
     from rollcontact.cases import api
-    from rollcontact.cases.plots.creep_figures import plot_curve
-    from rollcontact.cases.run.creep_curve import compute_curve, write_csv
-    scene = api.load_scene(args.scene, args.overrides)
-    if not scene.rolling_on:
-        raise InputError(f"creep-curve: scene {args.scene}: no [rolling] section (mode = \"steady\"); add one, or "
-                         "--set rolling.mode=\"steady\"")
-    if not (args.points >= 2 and 0 < args.max <= 100):
-        raise InputError(f"creep-curve: --points {args.points} --max {args.max}: allowed ranges are points >= 2 and "
-                         "0 < max <= 100")
-    out = Path(args.output)
-    stem = f"{scene.name}_creep_{args.of}"
-    targets = [out / f"{stem}{ext}" for ext in (".csv", ".png", ".pdf")]
-    existing = [t for t in targets if t.exists()]
-    if existing and not args.overwrite:
-        raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: add "
-                                "--overwrite, or give another folder with -o")
-    t0 = time.perf_counter()
-    table = compute_curve(scene, args.of, np.geomspace(0.02, args.max, args.points))
-    wall = time.perf_counter() - t0
-    paths = [write_csv(table, targets[0], overwrite=args.overwrite)]
-    paths += plot_curve(table, out, stem, overwrite=args.overwrite)
-    sweeps = sum(r["sweeps"] for r in table.rows)
-    print(f"{args.points} creepages of {args.of} in {wall:.2f} s ({sweeps} sweeps); saturation creepage "
-          f"{table.saturation:.6g}{' 1/mm' if args.of == 'phi' else ''}")
-    for p in paths:
-        print(Path(p).resolve())
+    print(api.creep_curve(args.scene, of=args.of, points=args.points, max_ratio=args.max, overrides=args.overrides,
+                          output=args.output, overwrite=args.overwrite).report())
     return 0

@@ -363,18 +363,19 @@ def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwr
     with oscillating loads (cases.plots.load_figures), and when the file holds subsurface stresses
     _subsurface_step<N> and _subsurface_maxima (cases.plots.subsurface_figures)."""
     stem = view.path.stem
+    if not view.has_fields and step is not None:     # refused before any figure is drawn
+        raise PlotError(view.no_fields_note().replace("only the history figure is drawn",
+                                                      f"step {step} cannot be drawn"))
+    if view.has_fields:
+        step = view.resolve_step(step)
     paths = save_figure(history_figure([view]), out_dir, f"{stem}_history", overwrite)
     if view.scene.oscillating:       # loads oscillating within each period: hysteresis loop, work per period
         from rollcontact.cases.plots.load_figures import loads_figure
         paths += save_figure(loads_figure(view), out_dir, f"{stem}_loads", overwrite)
     if not view.has_fields:
-        if step is not None:
-            raise PlotError(view.no_fields_note().replace("only the history figure is drawn",
-                                                          f"step {step} cannot be drawn"))
         if notes is not None:
             notes.append(view.no_fields_note())
         return paths
-    step = view.resolve_step(step)
     paths += save_figure(maps_figure(view, step), out_dir, f"{stem}_maps_step{step}", overwrite)
     paths += save_figure(profiles_figure([view], [step]), out_dir, f"{stem}_centrelines_step{step}", overwrite)
     from rollcontact.cases.plots.subsurface_figures import plot_subsurface
@@ -386,16 +387,17 @@ def compare_runs(va: RunView, vb: RunView, out_dir, step: int | None = None, not
                  overwrite=False) -> list:
     """History overlay, maps with B - A and overlaid centre lines of two runs."""
     stem = f"compare_{va.path.stem}_vs_{vb.path.stem}"
-    paths = save_figure(history_figure([va, vb]), out_dir, f"{stem}_history", overwrite)
     missing = [v for v in (va, vb) if not v.has_fields]
+    if missing and step is not None:                  # refused before any figure is drawn
+        raise PlotError(missing[0].no_fields_note().replace("only the history figure is drawn",
+                                                            f"step {step} cannot be drawn"))
+    if not missing:
+        sa, sb = va.resolve_step(step), vb.resolve_step(step)
+    paths = save_figure(history_figure([va, vb]), out_dir, f"{stem}_history", overwrite)
     if missing:
-        if step is not None:
-            raise PlotError(missing[0].no_fields_note().replace("only the history figure is drawn",
-                                                                f"step {step} cannot be drawn"))
         if notes is not None:
             notes += [v.no_fields_note() for v in missing]
         return paths
-    sa, sb = va.resolve_step(step), vb.resolve_step(step)
     paths += save_figure(compare_maps_figure(va, sa, vb, sb), out_dir, f"{stem}_maps", overwrite)
     paths += save_figure(profiles_figure([va, vb], [sa, sb]), out_dir, f"{stem}_centrelines", overwrite)
     return paths

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import time
 
-from rollcontact.bem.errors import GrossSlidingError, RollcontactError
+from rollcontact.bem.errors import GrossSlidingError, OutputWriteError, RollcontactError
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.run.discretise import field_steps, scene_grid, scene_operator, scene_path
@@ -69,6 +69,8 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
                          f"{row['tangential_iterations']}")
     except GrossSlidingError as exc:
         state_label, error = "gross_sliding", str(exc)
+    except OutputWriteError:
+        raise               # a checkpoint or a step's stresses could not be written: the run stops (cases.run.scene_run)
     except (RollcontactError, KeyboardInterrupt) as exc:
         status, interrupted = "failed", exc if isinstance(exc, KeyboardInterrupt) else None
         error = "interrupted by the user" if interrupted else f"{type(exc).__name__}: {exc}"

@@ -12,13 +12,15 @@ from __future__ import annotations
 
 import csv
 from dataclasses import dataclass
+import io
 import math
-import os
 from pathlib import Path
 
 import numpy as np
 
 from rollcontact.bem.errors import InputError, OutputExistsError
+from rollcontact.cases.arguments import arg, flag, on_command_line
+from rollcontact.cases.results.writing import write_text
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
 from rollcontact.cases.scene.scene import Scene
@@ -45,7 +47,7 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
     """Steady states of `scene` at creepages `fractions` x the saturation creepage of `varied` (default: 20 values
     geometrically from 0.02 to 4). F_over_muFn is -F/(mu Fn) of the component the creepage drives (positive)."""
     if varied not in VARIED:
-        raise InputError(f"creep-curve --of {varied!r}: allowed values are {list(VARIED)}")
+        raise InputError(f"{arg('of')} {varied!r}: allowed values are {list(VARIED)}")
     fractions = np.geomspace(0.02, 4.0, 20) if fractions is None else np.asarray(fractions, dtype=float)
     grid, pair = creep_grid(scene), scene.material_pair
     op = scene_operator(scene, grid)
@@ -81,19 +83,81 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
 
 def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
     """The curve as CSV (header: COLUMNS; a comment line first with the units and the saturation creepage),
-    through a temporary file renamed into place; an existing file only with `overwrite`."""
+    through a temporary file renamed into place (cases.results.writing); an existing file only with `overwrite`."""
     path = Path(path)
     if path.exists() and not overwrite:
-        raise OutputExistsError(f"{path}: exists; rollcontact does not replace a file unless asked: add --overwrite")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        raise OutputExistsError(f"{path}: exists; rollcontact does not replace a file unless asked: "
+                                f"{'add' if on_command_line() else 'pass'} {flag('overwrite')}")
     unit = "1/mm" if table.varied == "phi" else "-"
-    with open(tmp, "w", newline="") as fh:
-        fh.write(f"# creep-force curve over {table.varied} ({unit}); saturation creepage {table.saturation:.6g} "
-                 f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
-        writer = csv.DictWriter(fh, fieldnames=COLUMNS)
-        writer.writeheader()
-        for row in table.rows:
-            writer.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
-    os.replace(tmp, path)
-    return path
+    text = io.StringIO(newline="")
+    text.write(f"# creep-force curve over {table.varied} ({unit}); saturation creepage {table.saturation:.6g} "
+               f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
+    writer = csv.DictWriter(text, fieldnames=COLUMNS)
+    writer.writeheader()
+    for row in table.rows:
+        writer.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+    return write_text(path, text.getvalue(), "creep curve")
+
+
+@dataclass
+class CreepCurve:
+    """What `creep_curve_files` computed and wrote: the curve (`table`: rows, saturation creepage), the files
+    (`paths`: CSV, PNG, PDF), the creepage varied (`of`) and the time (`seconds`, wall). `report()` is what
+    `rollcontact creep-curve` prints."""
+    table: CurveTable
+    paths: list
+    of: str
+    seconds: float
+
+    def report(self) -> str:
+        sweeps = sum(r["sweeps"] for r in self.table.rows)
+        unit = " 1/mm" if self.of == "phi" else ""
+        return "\n".join([f"{len(self.table.rows)} creepages of {self.of} in {self.seconds:.2f} s ({sweeps} sweeps); "
+                          f"saturation creepage {self.table.saturation:.6g}{unit}"]
+                         + [str(Path(p).resolve()) for p in self.paths])
+
+    def __repr__(self) -> str:
+        return (f"CreepCurve(of={self.of!r}, points={len(self.table.rows)}, saturation={self.table.saturation:.6g}, "
+                f"files={len(self.paths)})")
+
+
+def creep_curve_files(scene: Scene, of: str = "xi", points: int = 20, max_ratio: float = 4.0, output="creep",
+                      overwrite: bool = False) -> CreepCurve:
+    """The creep-force curve of the steady [rolling] scene over `of` at `points` creepages geometrically from 0.02 to
+    `max_ratio` times the saturation creepage, written to `output`/<scene>_creep_<of>.csv and .png, .pdf (all of
+    them or none). Refused before any work (InputError naming the argument): a scene without [rolling] or with
+    mode = 'transient' (the curve is of the steady state), points < 2, max_ratio outside (0, 100], a file that exists
+    (unless `overwrite`)."""
+    import time
+    from rollcontact.cases.plots.common import all_or_none
+    from rollcontact.cases.plots.creep_figures import plot_curve
+    from rollcontact.cases.results.outputs import output_folder
+    if not scene.rolling_on:
+        raise InputError(f"scene {scene.name}: no [rolling] section (mode = \"steady\"); add one, or "
+                         f"{arg('overrides')} rolling.mode=\"steady\"")
+    if scene.rolling.mode != "steady":
+        raise InputError(f"scene {scene.name}: [rolling] mode = {scene.rolling.mode!r}: a creep curve is of the "
+                         f"steady state (each creepage solved in contact-fixed coordinates); use "
+                         f"{arg('overrides')} rolling.mode=\"steady\", or run the transient per creepage")
+    if of not in VARIED:
+        raise InputError(f"{arg('of')} {of!r}: allowed values are {list(VARIED)}")
+    if isinstance(points, bool) or not isinstance(points, int) or not points >= 2:
+        raise InputError(f"{arg('points')} {points!r}: allowed range is an integer >= 2")
+    if not (isinstance(max_ratio, (int, float)) and 0 < max_ratio <= 100):
+        raise InputError(f"{arg('max_ratio')} {max_ratio!r}: allowed range is 0 < {arg('max_ratio')} <= 100")
+    out = Path(output)
+    stem = f"{scene.name}_creep_{of}"
+    targets = [out / f"{stem}{ext}" for ext in (".csv", ".png", ".pdf")]
+    existing = [t for t in targets if t.exists()]
+    if existing and not overwrite:
+        raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: "
+                                f"{'add' if on_command_line() else 'pass'} {flag('overwrite')}, or give another "
+                                f"folder with {arg('output')}")
+    output_folder(out)
+    t0 = time.perf_counter()
+    table = compute_curve(scene, of, np.geomspace(0.02, max_ratio, points))
+    seconds = time.perf_counter() - t0
+    with all_or_none():
+        figures = plot_curve(table, out, stem, overwrite=overwrite)
+        paths = [write_csv(table, targets[0], overwrite=overwrite)] + figures
+    return CreepCurve(table, paths, of, seconds)

@@ -34,33 +34,37 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields, replace
 import math
 from pathlib import Path
+import re
 import tomllib
 from importlib import resources
 
+
 from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
+from rollcontact.cases.arguments import arg
 from rollcontact.cases.scene.geometry import (
-    SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
+    check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.keys import (
     SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, WheelRail,
     check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
+from rollcontact.cases.scene.checks import SceneChecks
+from rollcontact.cases.scene.overrides import (  # noqa: F401  (ALTERNATIVE_KEYS, SPELLINGS, other_spellings re-exported)
+    ALTERNATIVE_KEYS, SPELLINGS, assignments_of, other_spellings, toml_value, with_overrides)
 
-#: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
-ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"), ("xi", "Fx"), ("eta", "Fy"))
 
-
-def other_spellings(key: str) -> set:
-    """The alternative spellings of section.key: 'load.ft' -> {'load.Ft'}, 'geometry.R' -> {'geometry.Rx',
-    'geometry.Ry'}; empty for a key without one."""
-    sec, _, name = key.partition(".")
-    return {f"{sec}.{b if name == a else a}" for a, b in ALTERNATIVE_KEYS if name in (a, b)}
+def stored_name(toml_text: str) -> str | None:
+    """The scene name a stored scene's first line states (`Scene.to_toml`: "# rollcontact scene 'NAME' (units: ..."),
+    or None."""
+    first = toml_text.split("\n", 1)[0] if isinstance(toml_text, str) else ""
+    match = re.match(r"# rollcontact scene '(.*)' \(units:", first)
+    return match.group(1) if match else None
 
 
 @dataclass
-class Scene(SceneLimits):
+class Scene(SceneChecks, SceneLimits):
     """A complete, validated scene. Build it with `Scene.from_toml`, `Scene.from_dict` or `default_scene`."""
 
     materials: Materials = field(default_factory=Materials)
@@ -106,26 +110,42 @@ class Scene(SceneLimits):
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
+        if scene.shape != "file" or run_limits:    # a file profile's size needs its file
+            scene._check_finite()
         scene._resolve_resolution()
         if scene.shape == "file" and run_limits:
             check_file_coverage(scene)
         if run_limits:
             scene._check_resolution()
             scene._check_steps()
+            scene._check_load_cycles()
+            scene._check_rolling_run()
         return scene
 
     @classmethod
     def from_toml(cls, path) -> "Scene":
         path = Path(path)
         try:
-            text = path.read_text()
+            raw = path.read_bytes()
         except OSError as exc:
             raise SceneError(f"scene file {path}: {exc.strerror}") from None
+        if raw.startswith(b"\x89HDF\r\n\x1a\n"):
+            raise SceneError(f"scene file {path}: is an HDF5 file (a run file?), not a scene (TOML text); to continue "
+                             f"a run give it to {arg('restart')}, to read it use rollcontact.read_run or rollcontact plot")
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise SceneError(f"scene file {path}: not a text file (byte {exc.start} is not UTF-8); expected a scene "
+                             "in TOML") from None
         return cls.from_toml_text(text, name=path.stem, base=path.parent)
 
     @classmethod
-    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True, base=None) -> "Scene":
-        """base: the folder a relative [geometry] path is relative to (the scene file's; default the current one)."""
+    def from_toml_text(cls, text: str, name: str | None = None, run_limits: bool = True, base=None) -> "Scene":
+        """The scene of a TOML text. name: its name (default: the name a stored scene states in its first line,
+        `to_toml`, else 'scene'); base: the folder a relative [geometry] path is relative to (the scene file's;
+        default the current one)."""
+        if name is None:
+            name = stored_name(text) or "scene"
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
@@ -157,50 +177,8 @@ class Scene(SceneLimits):
         lines = [f"# rollcontact scene '{self.name}' (units: mm, N, MPa, degrees)"]
         for sec, vals in self.to_dict().items():
             lines.append(f"\n[{sec}]")
-            lines += [f"{k} = {_toml_value(v)}" for k, v in vals.items()]
+            lines += [f"{k} = {toml_value(v)}" for k, v in vals.items()]
         return "\n".join(lines) + "\n"
-
-    @staticmethod
-    def assignments(overrides) -> list[str]:
-        """`section.key=value` strings (as `--set` takes them) from {"section.key": value}; a list of such strings
-        passes through. Values are written as TOML, so that they parse back to the same value."""
-        if isinstance(overrides, dict):
-            return [f"{key}={_toml_value(value)}" for key, value in overrides.items()]
-        if isinstance(overrides, str):
-            return [overrides]
-        return list(overrides)
-
-    def with_overrides(self, assignments) -> "Scene":
-        """A new scene with overrides applied: `section.key=value` strings (values parsed as TOML, else as strings),
-        or a dict {"section.key": value}."""
-        assignments = self.assignments(assignments)
-        data = self.to_dict()
-        for key in self.derived:  # re-derived from the overridden scene unless set explicitly
-            sec, name = key.split(".")
-            data.get(sec, {}).pop(name, None)    # [motion] is left out of a rolling scene's dict
-        given = {}  # section.key -> the --set item that gave it
-        for item in assignments:
-            if "=" not in item or "." not in item.split("=", 1)[0]:
-                raise SceneError(f"--set {item!r}: expected section.key=value, e.g. load.ft=0.5")
-            key, raw = item.split("=", 1)
-            sec, name = key.strip().split(".", 1)
-            if sec not in SECTIONS:
-                raise SceneError(f"--set {item!r}: unknown section {sec!r}; allowed: {list(SECTIONS)}")
-            value = _parse_value(raw.strip())
-            section = data.setdefault(sec, {})
-            for other in sorted(other_spellings(f"{sec}.{name}")):
-                if other in given:
-                    raise SceneError(f"--set {given[other]!r} and --set {item!r}: give either {other} or "
-                                     f"{sec}.{name}, not both")
-                section.pop(other.partition(".")[2], None)
-            section[name] = value
-            given[f"{sec}.{name}"] = item
-        if "geometry.shape" in given:  # a new shape: the old shape's keys that it does not take are dropped
-            keep = SHAPE_KEYS.get(data["geometry"]["shape"], ())
-            for name in list(data["geometry"]):
-                if name != "shape" and name not in keep and f"geometry.{name}" not in given:
-                    del data["geometry"][name]
-        return Scene.from_dict(data, name=self.name)
 
     @property
     def wheelrail_on(self) -> bool:
@@ -243,95 +221,22 @@ class Scene(SceneLimits):
         (sa, sb), t = self.semi_axes, math.radians(self.rolling.direction)
         return math.hypot(sa * math.cos(t), sb * math.sin(t))
 
-    def _check_rolling(self, data: dict):
-        """A [rolling] scene has no [motion], no tangential load and the BEM model."""
-        if not self.rolling_on:
-            if set(data.get("rolling", {})) - {"mode"}:
-                raise SceneError("[rolling] mode = 'none' with other [rolling] keys: set mode = 'steady' to roll "
-                                 "with creepages, or leave the [rolling] section out")
-            return
-        if "motion" in data:
-            raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
-                             "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
-        ld = self.load
-        for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
-            if value is not None:
-                raise SceneError(f"[load] {key} = {value!r} with [rolling]: the tangential force of a rolling "
-                                 "scene follows from its creepages [rolling] xi, eta, phi; remove load." + key)
-        if ld.levels:
-            raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
-                             "load.levels")
-        ro = self.rolling
-        for creep, force in (("xi", "Fx"), ("eta", "Fy")):
-            if getattr(ro, creep) is not None and getattr(ro, force) is not None:
-                raise SceneError(f"[rolling] give either {creep} (creepage) or {force} (N), not both")
-        if (ro.Fx is None) != (ro.Fy is None):
-            raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
-                             "give both, or the creepages xi and eta")
-        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", "")):
-            if getattr(ro, key) is not None and ro.mode != "transient":
-                raise SceneError(f"[rolling] {key} = {getattr(ro, key)!r}{unit} with mode = {ro.mode!r}: {key} "
-                                 "applies to mode = 'transient' only")
-        if ro.step is not None:
-            half = self.rolling_half_length
-            if ro.step > half:
-                raise SceneError(f"[rolling] step = {ro.step!r} mm: allowed range is 0 < step <= {half:.6g} mm (the "
-                                 "contact's half-length a along the rolling direction; a longer step skips material)")
-            distance = ro.distance if ro.distance is not None else 8.0 * half
-            if distance / ro.step > MAX_STEPS:
-                raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
-                                 f"{MAX_STEPS} steps; use a larger step or a shorter distance")
-        if self.solver.fidelity != "bem":
-            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
-                             "boundary elements; allowed value is 'bem'")
+    @staticmethod
+    def assignments(overrides) -> list[str]:
+        """`section.key=value` strings (as `--set` takes them) from {"section.key": value} (cases.scene.overrides)."""
+        return assignments_of(overrides)
 
-    def _check_consistency(self):
-        ld, mo = self.load, self.motion
-        resolve_shape(self.geometry)
-        if ld.ft is not None and ld.Ft is not None:
-            raise SceneError("[load] give either ft (= Ft/(mu Fn)) or Ft (N), not both")
-        if ld.Ft is not None and ld.Ft > ld.mu * ld.Fn * (1 + 1e-12):
-            raise SceneError(f"[load] Ft = {ld.Ft} N exceeds mu*Fn = {ld.mu * ld.Fn:.6g} N: gross sliding, "
-                             "no static state exists (allowed range 0 <= Ft <= mu*Fn)")
-        if mo.w is not None and mo.W is not None:
-            raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
-        self._check_oscillation()
+    def with_overrides(self, assignments, replaces=()) -> "Scene":
+        """A new scene with overrides applied: `section.key=value` strings, or a dict {"section.key": value} (a text
+        value read as --set reads it). An override in the other spelling of a quantity the scene gives (load.Ft where
+        it gives load.ft, motion.W for motion.w, forces for creepages) is refused unless its key is in `replaces` (a
+        limit search sets the load.ft or motion.w it searches). SceneError names the key (cases.scene.overrides)."""
+        return with_overrides(self, assignments, replaces)
 
     @property
     def oscillating(self) -> bool:
         """True when a load oscillates within each period (load.ft_amplitude or load.fn_amplitude > 0)."""
         return self.load.ft_amplitude > 0 or self.load.fn_amplitude > 0
-
-    def _check_oscillation(self):
-        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
-
-        The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
-        checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi
-        in [-1, 1] is monotone in s on either side of its zero, so its maximum is at s = +1 or s = -1, and
-        |Ft| < mu Fn holds at every phase iff |ft + A| < 1 + B and |ft - A| < 1 - B, i.e. (ft, A >= 0)
-        ft + B - 1 < A < min(1 + B - ft, 1 - B + ft).
-        """
-        ld = self.load
-        if not self.oscillating:
-            return
-        if ld.levels:
-            raise SceneError(f"[load] levels = {ld.levels!r} cannot be combined with oscillating loads "
-                             "(ft_amplitude, fn_amplitude): give one or the other")
-        if ld.fn_amplitude > 0 and self.shape not in ("sphere", "ellipsoid"):
-            raise SceneError(f"[load] fn_amplitude = {ld.fn_amplitude!r} with [geometry] shape = {self.shape!r}: an "
-                             "oscillating normal load is supported for shape = 'sphere' or 'ellipsoid' only (the grid "
-                             "is sized by Hertz's a ~ Fn^(1/3) at the largest Fn); set fn_amplitude = 0")
-        A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
-        use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
-        if use >= 1.0:
-            lower, upper = ft + B - 1.0, min(1.0 + B - ft, 1.0 - B + ft)
-            allowed = (f"ft_amplitude < {upper:.6g}" if lower < 0 else
-                       f"{lower:.6g} < ft_amplitude < {upper:.6g}" if lower < upper else
-                       "none: lower load.ft below 1")
-            raise SceneError(
-                f"[load] ft_amplitude = {A!r} with ft = {ft:.6g}, fn_amplitude = {B!r}: |Ft| reaches {use:.4g} "
-                f"mu Fn during the cycle (gross sliding; at the smallest Fn, Fn (1 - fn_amplitude), when ft is "
-                f"large); allowed range is {allowed} at this ft and fn_amplitude (|Ft| < mu Fn at every phase)")
 
     # --- derived quantities ----------------------------------------------------------------------
     @property
@@ -476,32 +381,6 @@ class Scene(SceneLimits):
 
     def replace(self, **sections) -> "Scene":
         return replace(self, **sections)
-
-
-def _parse_value(raw: str):
-    """A --set value: TOML, else a number as Python writes it (.5, 1., 1e3: not TOML), else the text."""
-    try:
-        return tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
-        pass
-    try:
-        return float(raw)  # a NaN is refused with the key by the field check, like TOML's nan
-    except ValueError:
-        return raw
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, float):
-        if math.isinf(v):
-            return "inf" if v > 0 else "-inf"
-        return repr(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    return str(v)
 
 
 DEFAULT_SCENE_FILE = "paper_perpendicular.toml"

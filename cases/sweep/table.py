@@ -5,13 +5,14 @@ Units per column in `COLUMN_UNITS` (a varied key takes its scene unit); missing 
 NaN (floats) or -1 (counts) in HDF5.
 """
 import csv
+import io
 import math
-import os
 from pathlib import Path
 
 import h5py
 import numpy as np
 
+from rollcontact.cases.results.writing import new_hdf5, write_text
 from rollcontact.cases.scene.scene import key_unit
 
 SUMMARY_COLUMNS = ("index", "state", "status", "f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period",
@@ -55,39 +56,28 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
     strings UTF-8), attributes `varied` (the keys) and any `attrs` given (e.g. the base scene TOML).
     """
     outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     rows = sorted(rows, key=lambda r: r.get("index", 0))
     if columns is SUMMARY_COLUMNS and any(r.get("F_x") is not None for r in rows):
         columns = SUMMARY_COLUMNS + CREEP_COLUMNS      # a sweep over a [rolling] scene
     elif columns is SUMMARY_COLUMNS and any(r.get("n_patches") is not None for r in rows):
         columns = SUMMARY_COLUMNS + WHEELRAIL_COLUMNS  # a sweep over a [wheelrail] scene
     header = list(keys) + [c for c in columns if c not in keys]
-    tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
-    try:
-        with open(tmp, "w", newline="") as fh:
-            writer = csv.writer(fh)
-            writer.writerow(header)
-            for r in rows:
-                writer.writerow([_csv_cell(r.get(c)) for c in header])
-        os.replace(tmp, outdir / f"{stem}.csv")
-    finally:
-        tmp.unlink(missing_ok=True)
-    tmp = outdir / f".{stem}.h5.{os.getpid()}.tmp"
-    try:
-        with h5py.File(tmp, "w") as h5:
-            h5.attrs["varied"] = list(keys)
-            h5.attrs["columns"] = header
-            for k, v in (attrs or {}).items():
-                h5.attrs[k] = v
-            grp = h5.create_group("runs")
-            for c in header:
-                vals = [r.get(c) for r in rows]
-                ds = grp.create_dataset(c, data=_column_array(c, vals))
-                ds.attrs["units"] = COLUMN_UNITS.get(c) or key_unit(c)
-        os.replace(tmp, outdir / f"{stem}.h5")
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+    text = io.StringIO(newline="")
+    writer = csv.writer(text)
+    writer.writerow(header)
+    for r in rows:
+        writer.writerow([_csv_cell(r.get(c)) for c in header])
+    write_text(outdir / f"{stem}.csv", text.getvalue(), "summary table")
+    with new_hdf5(outdir / f"{stem}.h5", "summary table") as (h5, _):
+        h5.attrs["varied"] = list(keys)
+        h5.attrs["columns"] = header
+        for k, v in (attrs or {}).items():
+            h5.attrs[k] = v
+        grp = h5.create_group("runs")
+        for c in header:
+            vals = [r.get(c) for r in rows]
+            ds = grp.create_dataset(c, data=_column_array(c, vals))
+            ds.attrs["units"] = COLUMN_UNITS.get(c) or key_unit(c)
 
 
 def _csv_cell(v):

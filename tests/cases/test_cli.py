@@ -79,7 +79,7 @@ def test_mdr_fidelity_writes_the_same_history_layout(tmp_path):
 
 
 @pytest.mark.parametrize("overrides, message", [
-    ("motion.W=20000 motion.dW=100", "exceeds the limit of"),         # 55 x 200 001 elements > 2048^2
+    ("motion.w=4179 motion.dW=100", "exceeds the limit of"),          # W = 20000 mm: 55 x 200 001 elements > 2048^2
     ("motion.dW=0", r"\[motion\] dW = 0.0 mm: allowed range is \(0, inf\)"),
     ("motion.periods=-3", r"\[motion\] periods = -3: allowed range"),
     # 4.4e10 rolling steps: refused by the scene instead of a MemoryError while the path is built

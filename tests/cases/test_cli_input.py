@@ -96,8 +96,8 @@ def test_no_traceback_reaches_the_user_from_the_console_script(tmp_path):
     # a grid above the element limit names the margin that made it so, and its allowed range
     ("grid.margin=1000", "allowed range at this dx, dy and amplitude is [grid] margin <= 199.5 mm"),
     # W / dW overflowed to inf and math.ceil raised OverflowError (a traceback, exit 1)
-    ("motion.W=1e308", "[motion] W = 1e+308 mm with dW = 0.2 mm needs inf steps per quarter period; allowed range is "
-                       "W <= 5e+04 mm"),
+    ("motion.w=1e307", "[motion] W = 4.7857e+307 mm (= w a, a = 4.786 mm) with dW = 0.2 mm needs inf steps per "
+                       "quarter period; allowed range is W <= 5e+04 mm"),
     # sqrt(Rx Ry) would overflow: the derived amplitude w a is refused with its origin
     ("geometry.R=1e200", "(= w a, a = 6.495e+66 mm)"),
     # squared tractions underflow: u_stat 1.6 % off without a word

@@ -24,14 +24,14 @@ def naive_square(scene):
 
 @pytest.mark.parametrize("angle", [90, 0])
 def test_grid_of_seed_amplitude_lies_in_seed_element_range(angle):
-    scene = default_scene().with_overrides(["motion.W=1.2", f"motion.angle={angle}"])
+    scene = default_scene().with_overrides(["motion.W=1.2", f"motion.angle={angle}"], replaces=("motion.W",))
     grid = scene_grid(scene, scene_path(scene))
     assert SEED_ELEMENTS[0] <= grid.size <= SEED_ELEMENTS[1]
 
 
 @pytest.mark.parametrize("W", [1.2, 2.0, 3.4])
 def test_grid_covers_swept_strip_not_a_square(W):
-    scene = default_scene().with_overrides([f"motion.W={W}"])
+    scene = default_scene().with_overrides([f"motion.W={W}"], replaces=("motion.W",))
     grid = scene_grid(scene, scene_path(scene))
     a, m = scene.contact_radius, scene.grid.margin
     # long side along the rolling direction (y, perpendicular), short side = the contact + margin

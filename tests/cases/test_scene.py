@@ -25,7 +25,11 @@ def test_rolling_step_hits_the_reversal_points_exactly():
 
 
 def test_round_trip_through_toml_text_preserves_every_key():
-    s = default_scene().with_overrides(["load.Ft=5.5", "materials.E1=inf", "load.levels=[0.2, -0.3]"])
+    data = default_scene().to_dict()
+    data["load"].pop("ft")
+    data["load"]["Ft"] = 5.5          # the load in N (an override may not switch the scene's spelling)
+    s = Scene.from_dict(data, name="paper_perpendicular").with_overrides(["materials.E1=inf",
+                                                                          "load.levels=[0.2, -0.3]"])
     back = Scene.from_toml_text(s.to_toml(), name=s.name)
     assert back.to_dict() == s.to_dict()
     assert math.isinf(back.materials.E1) and back.load.Ft == 5.5 and back.load.levels == [0.2, -0.3]
@@ -55,7 +59,7 @@ def test_a_minimal_file_takes_neutral_defaults(tmp_path):
     ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr'\]"),
     ("materials.nu2=0.7", r"\[materials\] nu2 = 0.7: allowed range"),
     ("load.Fn=\"heavy\"", r"\[load\] Fn = 'heavy': expected a number in N"),
-    ("load.Ft=30", r"exceeds mu\*Fn"),
+    ("load.ft=1.5", r"\[load\] ft = 1.5: allowed range is \[0, 1\]"),
     ("noequals", r"expected section.key=value"),
     ("physics.g=9.81", r"unknown section 'physics'"),
 ])
@@ -101,17 +105,37 @@ def test_contradictory_alternatives_are_refused(tmp_path):
         Scene.from_toml(f)
 
 
-def test_override_of_an_alternative_replaces_the_other_spelling():
-    s = default_scene().with_overrides(["motion.W=1.2"])
-    assert s.motion.w is None and s.amplitude == 1.2
+@pytest.mark.parametrize("override, scene_gives, equivalent", [
+    ("load.Ft=5.5", "load.ft = 0.46", "load.ft = 0.279093 is Ft = 5.5 N here"),
+    ("motion.W=1.2", "motion.w = 0.23", "motion.w = 0.250747 is W = 1.2 mm here")])
+def test_an_override_in_the_other_spelling_of_a_key_the_scene_gives_is_refused(override, scene_gives, equivalent):
+    """The paper scene gives ft and w: --set load.Ft (or motion.W) would drop them unannounced. Refused, with the
+    value in the scene's spelling that gives the same load (Ft = ft mu Fn, mu Fn = 19.707 N) or amplitude (W = w a,
+    a = 4.7857 mm)."""
+    with pytest.raises(SceneError, match=f"overrides '{override}': the scene gives {scene_gives}, the same quantity "
+                                         f"in its other spelling: give .*\\({equivalent}\\)"):
+        default_scene().with_overrides([override])
 
 
-@pytest.mark.parametrize("first, second", [("load.Ft=5", "load.ft=0.3"), ("motion.w=0.2", "motion.W=1.0"),
+def test_forces_over_creepages_of_a_rolling_scene_are_refused():
+    """The shipped creep scene prescribes xi, eta: --set rolling.Fx, Fy dropped them unannounced."""
+    scene = Scene.from_toml(shipped_scene_path("creep_steady.toml"))
+    with pytest.raises(SceneError, match="the scene gives rolling.xi = 0.0005: prescribed forces .* exclude each other"):
+        scene.with_overrides(["rolling.Fx=-100", "rolling.Fy=0"])
+
+
+def test_a_sphere_becomes_an_ellipsoid_when_both_radii_are_given():
+    """R and Rx, Ry name different shapes (as geometry.shape does): an override switches the shape."""
+    s = default_scene().with_overrides(["geometry.Rx=80", "geometry.Ry=20"])
+    assert s.shape == "ellipsoid" and s.geometry.R is None
+
+
+@pytest.mark.parametrize("first, second", [("load.ft=0.3", "load.Ft=5"), ("motion.w=0.2", "motion.W=1.0"),
                                            ("geometry.Rx=20", "geometry.R=40")])
 def test_both_spellings_in_one_set_of_overrides_are_refused_naming_both(first, second):
     """Within one command the two spellings of a quantity contradict each other (as in a scene file): neither may win
     silently. Repeating the same key is an ordinary override (the last wins)."""
-    with pytest.raises(SceneError, match=rf"--set '{first}' and --set '{second}': give either"):
+    with pytest.raises(SceneError, match=rf"overrides '{first}' and overrides '{second}': give either"):
         default_scene().with_overrides([first, second])
     assert default_scene().with_overrides(["load.ft=0.3", "load.ft=0.4"]).f_t == 0.4
 
@@ -140,7 +164,8 @@ def test_readme_scene_table_states_the_defaults_of_cases_scene():
     import re
     from dataclasses import fields as dc_fields
     from pathlib import Path
-    from rollcontact.cases.scene.scene import SECTIONS, _parse_value
+    from rollcontact.cases.scene.scene import SECTIONS
+    from rollcontact.cases.scene.overrides import parse_value as _parse_value
     root = Path(__file__).resolve().parents[2]
     # the [wheelrail] row is on its own page until the README's table takes it
     readme = (root / "README.md").read_text() + (root / "docs" / "wheelrail.md").read_text()
@@ -163,7 +188,10 @@ def test_w_and_W_share_one_range():
     """w = W/a is open above like W (W = 10 mm is w = 2.09 on the paper scene); the step limit bounds both."""
     s = default_scene().with_overrides(["motion.w=1.5"])
     assert s.amplitude == pytest.approx(1.5 * s.contact_radius)
-    assert default_scene().with_overrides(["motion.W=10"]).amplitude == 10.0
+    data = default_scene().to_dict()
+    data["motion"].pop("w")
+    data["motion"]["W"] = 10.0
+    assert Scene.from_dict(data).amplitude == 10.0
     with pytest.raises(SceneError, match=r"\[motion\] w = -0.1: allowed range"):
         default_scene().with_overrides(["motion.w=-0.1"])
 

@@ -1,0 +1,133 @@
+"""The checks of a scene's keys against each other (`SceneChecks`, a mixin of `cases.scene.Scene`, called by
+`Scene.from_dict`): a [rolling] scene without [motion] or a tangential load, one spelling of each quantity, an
+oscillating load that never slides, and moduli, geometry and load whose contact has a finite positive size. Each
+raises SceneError naming the keys and what is allowed. Units: mm, N, MPa, degrees.
+"""
+from __future__ import annotations
+
+from dataclasses import fields
+import math
+
+import numpy as np
+
+from rollcontact.bem.errors import SceneError
+from rollcontact.cases.scene.geometry import resolve_shape
+from rollcontact.cases.scene.limits import MAX_STEPS
+
+
+class SceneChecks:
+    """Consistency checks of `cases.scene.Scene` (a mixin without fields)."""
+
+    def _check_rolling(self, data: dict):
+        """A [rolling] scene has no [motion], no tangential load and the BEM model."""
+        if not self.rolling_on:
+            if set(data.get("rolling", {})) - {"mode"}:
+                raise SceneError("[rolling] mode = 'none' with other [rolling] keys: set mode = 'steady' to roll "
+                                 "with creepages, or leave the [rolling] section out")
+            return
+        if "motion" in data:
+            raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
+                             "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
+        ld = self.load
+        for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
+            if value is not None:
+                raise SceneError(f"[load] {key} = {value!r} with [rolling]: the tangential force of a rolling "
+                                 "scene follows from its creepages [rolling] xi, eta, phi; remove load." + key)
+        if ld.levels:
+            raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
+                             "load.levels")
+        ro = self.rolling
+        for creep, force in (("xi", "Fx"), ("eta", "Fy")):
+            if getattr(ro, creep) is not None and getattr(ro, force) is not None:
+                raise SceneError(f"[rolling] give either {creep} (creepage) or {force} (N), not both")
+        if (ro.Fx is None) != (ro.Fy is None):
+            raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
+                             "give both, or the creepages xi and eta")
+        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", "")):
+            if getattr(ro, key) is not None and ro.mode != "transient":
+                raise SceneError(f"[rolling] {key} = {getattr(ro, key)!r}{unit} with mode = {ro.mode!r}: {key} "
+                                 "applies to mode = 'transient' only")
+        if ro.step is not None:
+            half = self.rolling_half_length
+            if ro.step > half:
+                raise SceneError(f"[rolling] step = {ro.step!r} mm: allowed range is 0 < step <= {half:.6g} mm (the "
+                                 "contact's half-length a along the rolling direction; a longer step skips material)")
+            distance = ro.distance if ro.distance is not None else 8.0 * half
+            if distance / ro.step > MAX_STEPS:
+                raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
+                                 f"{MAX_STEPS} steps; use a larger step or a shorter distance")
+        if self.solver.fidelity != "bem":
+            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
+                             "boundary elements; allowed value is 'bem'")
+
+    def _check_consistency(self):
+        ld, mo = self.load, self.motion
+        resolve_shape(self.geometry)
+        if ld.ft is not None and ld.Ft is not None:
+            raise SceneError("[load] give either ft (= Ft/(mu Fn)) or Ft (N), not both")
+        if ld.Ft is not None and ld.Ft > ld.mu * ld.Fn * (1 + 1e-12):
+            raise SceneError(f"[load] Ft = {ld.Ft} N exceeds mu*Fn = {ld.mu * ld.Fn:.6g} N: gross sliding, "
+                             "no static state exists (allowed range 0 <= Ft <= mu*Fn)")
+        if mo.w is not None and mo.W is not None:
+            raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
+        self._check_oscillation()
+
+    def _check_finite(self):
+        """The combined moduli and the contact size that the keys give are finite and positive: keys each within their
+        range can still over- or underflow together (E1 = 5e-324 MPa gives E* = 0; R = 1e300 mm an infinite
+        contact). SceneError naming the keys."""
+        m = self.materials
+        with np.errstate(all="ignore"):
+            pair = self.material_pair
+            moduli = (("E*", pair.E_star), ("G*", pair.G_star))
+        for name, value in moduli:
+            if not (math.isfinite(value) and value > 0):
+                raise SceneError(f"[materials] E1 = {m.E1!r}, nu1 = {m.nu1!r}, E2 = {m.E2!r}, nu2 = {m.nu2!r} MPa: the "
+                                 f"combined modulus {name} = {value!r} MPa is not a positive finite number (the moduli "
+                                 "over- or underflow); allowed are moduli whose combination is, e.g. 1e-100 < E < 1e100")
+        try:
+            with np.errstate(over="raise", divide="raise", invalid="raise"):
+                a = self.contact_radius
+                axes = self.semi_axes
+        except (ArithmeticError, ValueError, FloatingPointError):
+            a, axes = math.nan, (math.nan,)
+        if not (math.isfinite(a) and a > 0 and all(math.isfinite(v) and v > 0 for v in axes)):
+            raise SceneError(f"[geometry] {self._geometry_text()} with [load] Fn = {self.load.Fn!r} N and E* = "
+                             f"{pair.E_star:.6g} MPa: the contact size a = {a!r} mm is not a positive finite length "
+                             "(the keys over- or underflow together); give a geometry, load and moduli whose Hertz "
+                             "contact radius is")
+
+    def _geometry_text(self) -> str:
+        g = self.geometry
+        return ", ".join(f"{f.name} = {getattr(g, f.name)!r}" for f in fields(g) if getattr(g, f.name) is not None)
+
+    def _check_oscillation(self):
+        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
+
+        The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
+        checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi
+        in [-1, 1] is monotone in s on either side of its zero, so its maximum is at s = +1 or s = -1, and
+        |Ft| < mu Fn holds at every phase iff |ft + A| < 1 + B and |ft - A| < 1 - B, i.e. (ft, A >= 0)
+        ft + B - 1 < A < min(1 + B - ft, 1 - B + ft).
+        """
+        ld = self.load
+        if not self.oscillating:
+            return
+        if ld.levels:
+            raise SceneError(f"[load] levels = {ld.levels!r} cannot be combined with oscillating loads "
+                             "(ft_amplitude, fn_amplitude): give one or the other")
+        if ld.fn_amplitude > 0 and self.shape not in ("sphere", "ellipsoid"):
+            raise SceneError(f"[load] fn_amplitude = {ld.fn_amplitude!r} with [geometry] shape = {self.shape!r}: an "
+                             "oscillating normal load is supported for shape = 'sphere' or 'ellipsoid' only (the grid "
+                             "is sized by Hertz's a ~ Fn^(1/3) at the largest Fn); set fn_amplitude = 0")
+        A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
+        use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
+        if use >= 1.0:
+            lower, upper = ft + B - 1.0, min(1.0 + B - ft, 1.0 - B + ft)
+            allowed = (f"ft_amplitude < {upper:.6g}" if lower < 0 else
+                       f"{lower:.6g} < ft_amplitude < {upper:.6g}" if lower < upper else
+                       "none: lower load.ft below 1")
+            raise SceneError(
+                f"[load] ft_amplitude = {A!r} with ft = {ft:.6g}, fn_amplitude = {B!r}: |Ft| reaches {use:.4g} "
+                f"mu Fn during the cycle (gross sliding; at the smallest Fn, Fn (1 - fn_amplitude), when ft is "
+                f"large); allowed range is {allowed} at this ft and fn_amplitude (|Ft| < mu Fn at every phase)")
