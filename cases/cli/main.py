@@ -8,7 +8,7 @@ own arguments (`output`, `overrides`); inside a command (cases.arguments.command
 messages name the options (-o, --set).
 
 Adding a command (e.g. `import-contact`):
-  1. the work, in the module of its idea (e.g. a new subpackage cases/contact_deck/), raising RollcontactError
+  1. the work, in the module of its idea (for a new family, a new subpackage of cases/), raising RollcontactError
      subclasses whose messages name arguments through cases.arguments.arg (add the option's spelling to
      cases.arguments.OPTIONS);
   2. an API function in cases/api.py (or re-exported there), keyword arguments named as the options, returning a
