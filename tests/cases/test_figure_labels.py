@@ -17,12 +17,12 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from matplotlib.colors import to_hex
+import matplotlib.figure
 import matplotlib.text
 import numpy as np
 import pytest
 
 from rollcontact.cases.cli.main import main as run_cli
-from rollcontact.cases.plots import common
 
 #: pixels (at the PNG's DPI) by which two text boxes may touch: anti-aliasing and glyph side bearings.
 OVERLAP_PX = 1.0
@@ -112,23 +112,26 @@ def label_defects(drawn: dict) -> list[str]:
 
 @contextmanager
 def checked_figures():
-    """Collect {figure file stem: defects} of every figure saved (cases.plots.common.save_figure) meanwhile, measured
-    as its PNG is rendered. The PDFs, drawn from the same layout (tests/cases/test_plots.py checks them), are not
-    written here."""
+    """Collect {figure file stem: defects} of every figure saved as PNG meanwhile (cases.plots.common.save_figure
+    writes `.<stem>.<pid>.tmp.png`, then renames it), measured as the PNG is rendered."""
     found = {}
-    original = common._save_atomically
+    original = matplotlib.figure.Figure.savefig
 
-    def save(fig, path, **kwargs):
-        if Path(path).suffix == ".png":
-            with recorded_texts() as drawn:
-                original(fig, path, **kwargs)
-            found[Path(path).stem] = label_defects(drawn)
+    def savefig(fig, fname, *args, **kwargs):
+        name = Path(str(fname)).name
+        if kwargs.get("format", Path(name).suffix[1:]) != "png":
+            return original(fig, fname, *args, **kwargs)
+        with recorded_texts() as drawn:
+            result = original(fig, fname, *args, **kwargs)
+        stem = name[1:-len(".png")].rsplit(".", 2)[0] if name.startswith(".") else name[:-len(".png")]
+        found[stem] = label_defects(drawn)
+        return result
 
-    common._save_atomically = save
+    matplotlib.figure.Figure.savefig = savefig
     try:
         yield found
     finally:
-        common._save_atomically = original
+        matplotlib.figure.Figure.savefig = original
 
 
 def _cli(*argv):
@@ -153,14 +156,14 @@ def make_inputs(root: Path):
     _cli("run", "--set", "motion.w=0", "--set", "load.ft=0", "--set", "load.ft_amplitude=0.6", "--set",
          "motion.periods=3", "--set", "grid.dx=0.6", "--set", "output.fields=none", "-q", "-o", runs / "md.h5")
     # a sweep over alignment, amplitude and load, with a limit search in the same folder
-    _cli("sweep", "--vary", "motion.angle=0,45,90", "--vary", "motion.w=0.1,0.23,0.4", "--vary", "load.ft=0.3,0.9",
+    _cli("sweep", "--vary", "motion.angle=0,45,90", "--vary", "motion.w=0.1,0.4", "--vary", "load.ft=0.3,0.9",
          *COARSE, "-o", root / "sweep", "--jobs", "1", "-q")
     _cli("limit-search", "--vary", "motion.w=0.23", "--vary", "motion.angle=0,90", *COARSE, "--tol", "0.1",
          "-o", root / "sweep", "--jobs", "1", "-q")
     # oscillating loads: a phase sweep and a phase limit search (docs/oscillating_loads.md)
     _cli("sweep", "--vary", "motion.angle=0,90", "--vary", "load.ft_amplitude=0.1,0.3", "--vary",
-         "load.phase=0:270:4", *COARSE, "--set", "output.fields=none", "-o", root / "osc_ft", "--jobs", "1", "-q")
-    _cli("limit-search", "--vary", "motion.w=0.23", "--vary", "motion.angle=0,90", "--vary", "load.phase=0,180",
+         "load.phase=0,180", *COARSE, "--set", "output.fields=none", "-o", root / "osc_ft", "--jobs", "1", "-q")
+    _cli("limit-search", "--vary", "motion.w=0.23", "--vary", "motion.angle=90", "--vary", "load.phase=0,180",
          "--set", "load.ft_amplitude=0.2", *COARSE, "--set", "output.fields=none", "--tol", "0.1",
          "-o", root / "osc_lim", "--jobs", "1", "-q")
     # a non-spherical profile (docs/shapes.md)
