@@ -8,10 +8,11 @@ form, a conservation law or a published reference. A change of the model that mo
 the worse) fails its regression tests: regenerate the file, check the change, commit both.
 
     .venv/bin/python tests/reference_data.py [NAME ...] [-o DIR]      # DIR/reference_data.json (default
-                                                                      # results/reference_data); ~10 min for all
+                                                                      # results/reference_data); 25 min of CPU
     .venv/bin/python tests/reference_data.py -o tests/data --overwrite  # refresh the committed file
 
-NAME is one of the entries below (all by default); the command prints each value beside the committed one. An
+NAME is one of the entries below (all by default; mdr_ratchet_ratio takes about half the time, kappa_3d_fig8 and
+kappa_3d_ft03 a third); the command prints each value beside the committed one when they differ. An
 entry records what it is, the scene and discretisation it comes from, and its values:
 
 * kappa_3d_fig8: seed Fig. 8's points (w = 0.23, f_t = 0.2 / 0.4 / 0.6, parallel and perpendicular) on the paper
