@@ -12,7 +12,7 @@ the worse) fails its regression tests: regenerate the file, check the change, co
     .venv/bin/python tests/reference_data.py -o tests/data --overwrite  # refresh the committed file
 
 NAME is one of the entries below (all by default; mdr_ratchet_ratio takes about half the time, kappa_3d_fig8 and
-kappa_3d_ft03 a third); the command prints each value beside the committed one when they differ. An
+kappa_3d_ft03 a third); the command prints each value (and the committed one beside it when they differ). An
 entry records what it is, the scene and discretisation it comes from, and its values:
 
 * kappa_3d_fig8: seed Fig. 8's points (w = 0.23, f_t = 0.2 / 0.4 / 0.6, parallel and perpendicular) on the paper
