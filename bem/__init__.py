@@ -5,6 +5,7 @@
     grid        the world-fixed grid of piecewise-constant elements
     influence   Boussinesq-Cerruti influence coefficients of a rectangular element (theory.md §2)
     operator    the influence coefficients applied by zero-padded FFT convolution (theory.md §3)
+    toeplitz    given (non-symmetric) Toeplitz kernels applied the same way (steady viscoelastic rolling)
     subsurface  stresses below the grid from its tractions, depth layer by depth layer (theory.md §11.6)
     rows        the tangential influence of one grid row's change on the other rows, by 1-D FFTs
     wisdom      FFTW wisdom cached on disk (and the pyfftw import the operator uses)
@@ -18,7 +19,7 @@ _WHERE = {"ConvergenceError": "errors", "ContactEdgeError": "errors", "GrossSlid
           "OutputExistsError": "errors", "OutputInUseError": "errors",
           "InputError": "errors", "RollcontactError": "errors", "SceneError": "errors", "Grid": "grid",
           "contact_box": "grid", "influence_coefficients": "influence", "Material": "materials",
-          "MaterialPair": "materials", "HalfSpaceOperator": "operator", "SubsurfaceStresses": "subsurface"}
+          "MaterialPair": "materials", "HalfSpaceOperator": "operator", "ToeplitzOperator": "toeplitz", "SubsurfaceStresses": "subsurface"}
 __all__ = list(_WHERE)
 
 

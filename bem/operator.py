@@ -61,8 +61,8 @@ def fft_length(n: int) -> int:
     return smooth_length(n, even=True)
 
 
-def _fft_pairs(ks, shape, threads, planner):
-    """{k: _FFTPair} for batches of k fields of `shape`. Plans come from the on-disk FFTW wisdom; the wisdom
+def fft_pairs(ks, shape, threads, planner):
+    """{k: _FFTPair} for batches of k fields of `shape` (this operator's and bem.toeplitz's). Plans come from the on-disk FFTW wisdom; the wisdom
     is written back only when this process plans a transform for the first time (exporting it costs ms)."""
     with _wisdom.lock:
         _wisdom.load()
@@ -120,7 +120,7 @@ class HalfSpaceOperator:
         comps = ("zz", "xx", "yy", "xy") + (("xz", "yz") if self.coupled else ())
         kernels = self._kernels(comps)
         self.self_coefficients = {c: float(k[0, 0]) for c, k in kernels.items()}
-        self._fft = _fft_pairs((1, 2, 3), self.padded, self.threads, planner)
+        self._fft = fft_pairs((1, 2, 3), self.padded, self.threads, planner)
         scale = 1.0 / (self.padded[0] * self.padded[1])  # c2r is unnormalised: fold 1/N into spectra
         self.spectra = {}
         f1 = self._fft[1]
@@ -192,7 +192,7 @@ class HalfSpaceOperator:
         scale = 1.0 / (sy * sx)  # c2r is unnormalised
         symbols = {"zz": scale / zz, **self._tangential_inverse_symbols(0.0)}
         self.inverse_spectra = {c: np.ascontiguousarray(v, dtype=np.float64) for c, v in symbols.items()}
-        self._fft_small = _fft_pairs((1, 2), self.small, self.threads, planner)
+        self._fft_small = fft_pairs((1, 2), self.small, self.threads, planner)
 
     def _coupling_blocks(self):
         """The coupling products' (imaginary) spectra stacked as complex (outputs, inputs, Py, Px//2+1) arrays."""

@@ -7,6 +7,8 @@
     creep/       rolling with creepage and spin: the steady state in contact-fixed coordinates, the transient on the
                  world-fixed grid from rest or Cattaneo's state, prescribed forces, creep curves, Kalker's
                  coefficients (theory.md §7.3, §11.5)
+    visco/       viscoelastic bodies (Standard Linear Solid): element states and their exact step update, the steady
+                 rolling operator and its non-symmetric normal solver, Hunter's cylinder (docs/theory.md §12.3)
     mdr/         the 1-D MDR model of oscillating rolling and its closed-form limits (theory.md §8)
     analytic     closed-form references: Hertz, Cattaneo-Mindlin, Hertz ellipse (theory.md §7)
     memo         the product memo the normal and tangential solvers share

@@ -74,4 +74,8 @@ def plot_creep_run(data, out_dir, stem, overwrite=False):
                     arrowprops=dict(arrowstyle="->", color="k"), annotation_clip=False)
     fig.suptitle(f"{s['mode']} rolling: xi = {s['xi']:.4g}, eta = {s['eta']:.4g}, phi = {s['phi']:.4g} 1/mm; "
                  f"F_x = {s['F_x']:.4g} N, F_y = {s['F_y']:.4g} N (on the sphere)", fontsize=10)
-    return save_figure(fig, out_dir, f"{stem}_maps", overwrite=overwrite)
+    paths = save_figure(fig, out_dir, f"{stem}_maps", overwrite=overwrite)
+    if "pressure_centroid_x" in s:       # viscoelastic bodies: the pressure leaning forward (docs/viscoelastic.md)
+        from rollcontact.cases.plots.visco_figures import plot_pressure
+        paths += plot_pressure(data, out_dir, stem, overwrite=overwrite)
+    return paths

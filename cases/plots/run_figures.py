@@ -378,6 +378,9 @@ def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwr
         return paths
     paths += save_figure(maps_figure(view, step), out_dir, f"{stem}_maps_step{step}", overwrite)
     paths += save_figure(profiles_figure([view], [step]), out_dir, f"{stem}_centrelines_step{step}", overwrite)
+    if view.scene.viscoelastic:      # the pressure leaning forward and its centroid (docs/viscoelastic.md)
+        from rollcontact.cases.plots.visco_figures import plot_pressure
+        paths += plot_pressure(view.data, out_dir, f"{stem}_step{step}", step, overwrite)
     from rollcontact.cases.plots.subsurface_figures import plot_subsurface
     paths += plot_subsurface(view, out_dir, step, notes, overwrite)
     return paths

@@ -28,6 +28,13 @@ HISTORY_NAMES = tuple(HISTORY_UNITS)
 #: about the contact centre (Kalker's convention), xi, eta the creepages of the step, cpu_time its process CPU time.
 CREEP_HISTORY_UNITS = {"M_z": "N mm", "xi": "-", "eta": "-", "cpu_time": "s"}
 
+#: /history of a scene with a speed adds time, the end of the step (s; step n ends at n step_time, step 0 at 0); of a
+#: scene with viscoelastic bodies (docs/viscoelastic.md; cases.run.viscoelastic) pressure_centroid_x, int x p dA / Fn
+#: along the rolling direction from the rolling body's lowest point, and viscous_dissipation, the work of the bodies'
+#: viscous dashpots in the step.
+TIME_HISTORY_UNITS = {"time": "s"}
+VISCO_HISTORY_UNITS = {"pressure_centroid_x": "mm", "viscous_dissipation": "N mm"}
+
 #: /fields: snapshots of shape (stored steps, ny, nx), name -> unit. p, tau: pressure and traction exerted by the
 #: sphere on the substrate; u: displacements of the substrate surface relative to the sphere; slip: of that step.
 FIELD_UNITS = {
@@ -35,6 +42,9 @@ FIELD_UNITS = {
     "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip",
 }
 FIELD_NAMES = tuple(FIELD_UNITS)
+#: /fields of a stepped run with viscoelastic bodies add the element states q of each such body i (MPa; the tractions
+#: p, tau_x, tau_y filtered by the body's exponential memory, solver.visco.memory), from which a restart continues.
+VISCO_FIELD_UNITS = {f"q_{c}{i}": "MPa" for i in (1, 2) for c in "pxy"}
 
 #: /summary: name -> unit ('-': dimensionless, a count or text). Normalised values follow seed Eq. 9:
 #: f_t = Ft/(mu Fn), w = W/a, u = U/U0 with U0 = mu E* d/G*. U_perp: the final shift across Ft,
@@ -48,6 +58,15 @@ SUMMARY_UNITS = {
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
     "speed": "mm/s", "step_time": "s",
 }
+#: Summary values of a scene with viscoelastic bodies (docs/viscoelastic.md): pressure_centroid_x (mm, at the last
+#: step, or the steady state's), rolling_resistance_moment = Fn pressure_centroid_x (N mm), the viscous work of the last
+#: complete period (oscillating scenes, N mm) or the power dissipated (steady rolling, and a transient's last step, W);
+#: a [rolling] transient gives the steady state's beside its own (the names with _steady).
+VISCO_SUMMARY_UNITS = {"pressure_centroid_x": "mm", "rolling_resistance_moment": "N mm",
+                       "viscous_dissipation_per_period": "N mm", "viscous_power": "W",
+                       "pressure_centroid_x_steady": "mm", "rolling_resistance_moment_steady": "N mm",
+                       "viscous_power_steady": "W"}
+SUMMARY_UNITS.update(VISCO_SUMMARY_UNITS)
 #: dissipation_per_period: the frictional work of the last complete period (sum of /history/dissipation over it).
 #: speed: the scene's rolling speed (motion.speed or rolling.speed), step_time: the duration of every step (its
 #: displacement over the speed; Scene.step_time); both only in a scene with a speed.
@@ -119,8 +138,8 @@ SUMMARY_UNITS.update({"patch_Fx_steady": "N", "patch_Fy_steady": "N", "patch_Mz_
                       "distance": "mm", "step": "mm"})
 
 #: Units of every stored dataset (its 'units' attribute in HDF5).
-UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FIELD_UNITS, **PATCH_FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm",
-         "y": "mm", "z": "mm"}
+UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **TIME_HISTORY_UNITS, **VISCO_HISTORY_UNITS, **FIELD_UNITS,
+         **VISCO_FIELD_UNITS, **PATCH_FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
 
 
 @dataclass

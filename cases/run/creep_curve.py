@@ -22,6 +22,7 @@ from rollcontact.bem.errors import InputError, OutputExistsError
 from rollcontact.cases.arguments import arg, flag, on_command_line
 from rollcontact.cases.results.writing import write_text
 from rollcontact.cases.run.discretise import scene_operator
+from rollcontact.cases.run.viscoelastic import steady_visco
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, kalker_coefficients,
@@ -50,13 +51,17 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
         raise InputError(f"{arg('of')} {varied!r}: allowed values are {list(VARIED)}")
     fractions = np.geomspace(0.02, 4.0, 20) if fractions is None else np.asarray(fractions, dtype=float)
     grid, pair = creep_grid(scene), scene.material_pair
-    op = scene_operator(scene, grid)
+    visco = steady_visco(scene, grid) if scene.viscoelastic else None     # docs/viscoelastic.md
+    op = scene_operator(scene, grid) if visco is None else visco.operator
     if op.coupled:
         raise InputError(f"creep-curve: coupled materials (Dundurs beta = {pair.beta:.3g}) need the normal problem "
                          "at every creepage; run the scene per creepage (rollcontact run), or set "
                          "solver.coupling = \"off\"")
-    normal = solve_normal(op, rolling_frame_profile(scene, grid), force=scene.load.Fn,
-                          params=NormalParams(tol=scene.solver.tol, max_iter=scene.solver.max_iter))
+    nparams = NormalParams(tol=scene.solver.tol, max_iter=scene.solver.max_iter)
+    if visco is None:
+        normal = solve_normal(op, rolling_frame_profile(scene, grid), force=scene.load.Fn, params=nparams)
+    else:
+        normal = visco.solve_normal(rolling_frame_profile(scene, grid), scene.load.Fn, params=nparams)
     axes = rolling_semi_axes(scene)
     if axes is None:
         raise InputError(f"creep-curve: [rolling] direction = {scene.rolling.direction} deg is oblique to the axes of "
@@ -72,7 +77,8 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
                                      normal.force)
     creep = np.zeros((len(fractions), 3))
     creep[:, index] = fractions * saturation
-    curve = creep_curve(SteadyRolling(grid, pair, coupled=False, operator=op), normal.pressure, scene.load.mu, creep,
+    problem = SteadyRolling(grid, pair, coupled=False, operator=op) if visco is None else visco.tangential_problem
+    curve = creep_curve(problem, normal.pressure, scene.load.mu, creep,
                         params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)))
     ratio = -curve.force[:, component] / mu_fn
     rows = [dict(zip(COLUMNS, (creep[k, index], fractions[k], curve.force[k, 0], curve.force[k, 1],

@@ -33,6 +33,7 @@ from rollcontact.cases.run.creep_steady import solve_scene
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.creep_transient import run_transient
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces
+from rollcontact.cases.run.viscoelastic import steady_outputs, steady_visco
 from rollcontact.cases.scene.scene import Scene
 
 
@@ -46,20 +47,21 @@ def run_creep(scene: Scene, *, progress=None) -> RunResult:
         if scene.rolling.mode == "transient":
             return run_transient(scene, t_start, progress=progress)
         pair = scene.material_pair
-        op = scene_operator(scene, grid)
+        visco = steady_visco(scene, grid) if scene.viscoelastic else None
+        op = scene_operator(scene, grid) if visco is None else visco.operator
         if progress:
             progress(f"steady rolling: grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = "
                      f"{grid.dy} mm, contact-fixed, x along the rolling direction {scene.rolling.direction} deg), "
                      f"coupling {'on' if op.coupled else 'off'}")
-        state = solve_scene(scene, grid, op, pair)
+        state = solve_scene(scene, grid, op, pair, visco)
     except RollcontactError as exc:
         return RunResult(scene_toml=scene.to_toml(), status="failed", error=f"{type(exc).__name__}: {exc}",
                          x=grid.x, y=grid.y, summary={"state": "failed", "wall_time": time.perf_counter() - t_start},
                          version=version())
-    return _result(scene, grid, op, state, time.perf_counter() - t_start)
+    return _result(scene, grid, op, state, time.perf_counter() - t_start, visco)
 
 
-def _result(scene, grid, op, state, wall):
+def _result(scene, grid, op, state, wall, visco=None):
     normal, steady, outer, (xi, eta, phi) = state
     dA = grid.cell_area
     tau_sub = -steady.traction                       # the sphere's traction on the substrate (run-file meaning)
@@ -91,6 +93,8 @@ def _result(scene, grid, op, state, wall):
                    steps_planned=1, iterations=int(history["iterations"][0]), wall_time=wall, fidelity="bem")
     if scene.speed is not None:
         summary["speed"] = scene.speed
+    if visco is not None:                 # docs/viscoelastic.md: the forward lean of the pressure and its cost
+        summary.update(steady_outputs(visco, grid, normal.pressure, tau_sub, normal.force))
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=fields, field_steps=stored, summary=summary, version=version())
 

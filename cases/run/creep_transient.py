@@ -29,6 +29,7 @@ from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.run.creep_steady import steady_state
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces, rolling_frame_gap
+from rollcontact.cases.run.viscoelastic import MILLI, pressure_centroid, scene_memory, steady_outputs, steady_visco
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep.world import roll_world, rolling_steps
 from rollcontact.solver.normal import NormalParams
@@ -57,7 +58,9 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
         progress(f"transient rolling on the world-fixed grid {world} (x along the rolling direction "
                  f"{ro.direction} deg), {n} steps of {step:.6g} mm from the {ro.initial or 'rest'} state, coupling "
                  f"{'on' if op.coupled else 'off'}")
-    steady_normal, steady, _, steady_creep = steady_state(scene)
+    visco = steady_visco(scene, creep_grid(scene)) if scene.viscoelastic else None
+    steady_normal, steady, _, steady_creep = steady_state(scene, visco)
+    memory = scene_memory(scene, op)
     params = StepParams(normal=NormalParams(tol=tol, max_iter=scene.solver.max_iter),
                         tangential=TangentialParams(tol=tol, max_iter=scene.solver.max_iter),
                         coupling_tol=max(tol, 1e-10))
@@ -67,8 +70,14 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
     rows, fields, stored = [], {k: [] for k in FIELDS}, []
     for rec in roll_world(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
                           distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
-                          phi=phi, forces=forces, initial=ro.initial or "rest", params=params):
+                          phi=phi, forces=forces, initial=ro.initial or "rest", params=params, memory=memory):
         rows.append(_row(rec, grid))
+        if memory is not None:          # docs/viscoelastic.md; time: with cattaneo, its load at rest takes a step
+            rows[-1].update(time=(rec.step + (ro.initial == "cattaneo")) * scene.step_time,
+                            pressure_centroid_x=pressure_centroid(grid, rec.normal.pressure, (rec.centre, 0.0)),
+                            viscous_dissipation=rec.viscous_dissipation)
+        elif scene.step_time is not None:
+            rows[-1]["time"] = (rec.step + (ro.initial == "cattaneo")) * scene.step_time
         if rec.step in keep:
             stored.append(rec.step)
             for k, v in _fields(rec).items():
@@ -91,6 +100,12 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
                    time_per_step=float(history["wall_time"][1:].mean()), fidelity="bem")
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=scene.step_time)
+    if visco is not None:
+        xc = float(history["pressure_centroid_x"][-1])
+        steady_out = steady_outputs(visco, visco.grid, steady_normal.pressure, -steady.traction, steady_normal.force)
+        summary.update(pressure_centroid_x=xc, rolling_resistance_moment=last.normal.force * xc,
+                       viscous_power=last.viscous_dissipation / scene.step_time * MILLI,
+                       **{f"{k}_steady": v for k, v in steady_out.items()})
     out = {k: np.asarray(v) for k, v in fields.items()} if stored else {}
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=out, field_steps=np.asarray(stored, dtype=np.int64), summary=summary, version=version())

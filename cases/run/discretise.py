@@ -10,6 +10,7 @@ import numpy as np
 from rollcontact.bem.errors import InputError, SceneError
 from rollcontact.bem.grid import MAX_ELEMENTS, Grid, contact_box
 from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.viscoelastic import step_pair
 from rollcontact.cases.scene.extent import contact_extent, estimated  # noqa: F401  (re-exported)
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.schedule import LoadOscillation
@@ -35,8 +36,10 @@ def scene_path(scene: Scene) -> LoadPath:
 
 
 def scene_operator(scene: Scene, grid: Grid) -> HalfSpaceOperator:
-    """The scene's half-space operator on `grid` ([solver] threads and coupling)."""
-    return HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
+    """The scene's half-space operator on `grid` ([solver] threads and coupling); with viscoelastic bodies that of the
+    effective pair of its step time (cases.run.viscoelastic.step_pair)."""
+    pair = step_pair(scene) if scene.viscoelastic else scene.material_pair
+    return HalfSpaceOperator(grid, pair, threads=scene.solver.threads,
                              coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
 
 

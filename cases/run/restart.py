@@ -44,6 +44,20 @@ class RestartSource:
     def step(self) -> int:
         return self.state.step
 
+    def restore(self, memory):
+        """Set the element states of viscoelastic bodies (a solver.visco.ViscoMemory) to the restart step's, from its
+        stored snapshot (the states q and the total displacement u_x, u_y); InputError when they were not stored."""
+        steps = [int(s) for s in np.asarray(self.data.field_steps)]
+        i = steps.index(self.step)
+        fields = self.data.fields
+        missing = [name for name in memory.states() if name not in fields]
+        if missing:
+            raise InputError(f"--restart {self.path}: the viscoelastic element states {missing} were not stored, so "
+                             "the run cannot continue from them; run the scene anew")
+        states = {name: np.asarray(fields[name][i]) for name in memory.states()}
+        displacement = np.stack([fields["u_x"][i], fields["u_y"][i]])
+        memory.restore(states, self.state.pressure, self.state.traction, displacement)
+
     @property
     def period(self) -> int:
         """Oscillation period of the restart step (0: the loading phase)."""

@@ -10,6 +10,7 @@ import numpy as np
 
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
+from rollcontact.cases.run.viscoelastic import viscous_per_period
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.shakedown import SETTLED_STATES, classify, cyclic_slip
 from rollcontact.solver.rolling.stepping import LoadPath
@@ -46,6 +47,10 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     if n_done:
         summary["U_perp"] = float(U_perp[-1])
     summary["dissipation_per_period"] = dissipation_per_period(path.period, history)
+    if scene.viscoelastic and n_done:     # docs/viscoelastic.md; cases.run.viscoelastic
+        xc = float(history["pressure_centroid_x"][-1])
+        summary.update(pressure_centroid_x=xc, rolling_resistance_moment=float(history["Fn"][-1]) * xc,
+                       viscous_dissipation_per_period=viscous_per_period(path.period, history))
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=path.step_time)
     if state_label:
@@ -134,6 +139,7 @@ def format_summary(result: RunResult) -> str:
         lines.append(f"sideways (across Ft): U_perp = {s['U_perp']:.6f} mm{walk}")
     if s.get("dissipation_per_period") is not None and d.scene.oscillating:
         lines.append(f"frictional work of the last period: {s['dissipation_per_period']:.6g} N mm")
+    lines += _visco_lines(s)
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:
@@ -165,6 +171,20 @@ def _format_creep(d: RunResult) -> str:
                             else ""))
     else:
         lines.append(f"status: {d.status}: {d.error}")
+    lines += _visco_lines(s)
     if d.path is not None:
         lines.append(f"results written to {Path(d.path).resolve()}")
     return "\n".join(lines)
+
+
+def _visco_lines(s: dict) -> list:
+    """The viscoelastic outputs of a summary (cases.run.viscoelastic), one line; none for an elastic run."""
+    if s.get("pressure_centroid_x") is None:
+        return []
+    line = (f"viscoelastic: pressure centroid {s['pressure_centroid_x']:.5g} mm ahead of the lowest point, rolling "
+            f"resistance moment {s['rolling_resistance_moment']:.5g} N mm")
+    if s.get("viscous_dissipation_per_period") is not None:
+        line += f", viscous work of the last period {s['viscous_dissipation_per_period']:.5g} N mm"
+    if s.get("viscous_power") is not None:
+        line += f", viscous power {s['viscous_power']:.5g} W"
+    return [line]

@@ -72,6 +72,42 @@ class SceneChecks:
             raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
         self._check_oscillation()
 
+    def _check_visco(self):
+        """A viscoelastic body (materials.visco<i> = 'sls', docs/viscoelastic.md) has a finite glassy modulus E<i>, a
+        relaxed modulus below it and a relaxation time, and its scene a speed and the boundary elements; an elastic
+        body takes no relaxed modulus or relaxation time. Refused with the key named, before any work."""
+        m = self.materials
+        for i in (1, 2):
+            visco, E = getattr(m, f"visco{i}"), getattr(m, f"E{i}")
+            relaxed, tau = getattr(m, f"E{i}_relaxed"), getattr(m, f"tau{i}")
+            if visco != "sls":
+                for key, value in ((f"E{i}_relaxed", relaxed), (f"tau{i}", tau)):
+                    if value is not None:
+                        raise SceneError(f"[materials] {key} = {value!r} for an elastic body (visco{i} left out or "
+                                         f"'none'): a relaxed modulus and a relaxation time belong to a viscoelastic "
+                                         f"body; set materials.visco{i} = 'sls' or remove materials.{key}")
+                continue
+            for key, value, unit in ((f"E{i}_relaxed", relaxed, "MPa"), (f"tau{i}", tau, "s")):
+                if value is None:
+                    raise SceneError(f"[materials] visco{i} = 'sls' needs materials.{key} ({unit}): the standard linear "
+                                     f"solid's {'relaxed modulus' if unit == 'MPa' else 'creep relaxation time'}")
+            if math.isinf(E):
+                raise SceneError(f"[materials] E{i} = inf with visco{i} = 'sls': a rigid body cannot be viscoelastic; "
+                                 f"give the glassy (instantaneous) modulus as E{i} (MPa)")
+            if not relaxed < E:
+                raise SceneError(f"[materials] E{i}_relaxed = {relaxed!r} MPa with E{i} = {E!r} MPa: allowed range is "
+                                 f"(0, {E!r}) MPa (the relaxed modulus below the glassy one, E{i})")
+        if not self.viscoelastic:
+            return
+        keys = [f"materials.visco{i}" for i in (1, 2) if getattr(m, f"visco{i}") == "sls"]
+        if self.speed is None:
+            where = "[rolling] speed" if self.rolling_on else "[motion] speed"
+            raise SceneError(f"{', '.join(keys)} = 'sls' without a speed: a viscoelastic body needs the rolling speed "
+                             f"(mm/s, > 0) that gives its steps their time; set {where.replace('[', '').replace('] ', '.')}")
+        if self.solver.fidelity != "bem":
+            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with {', '.join(keys)} = 'sls': the MDR "
+                             "model has no viscoelastic bodies; allowed value is 'bem'")
+
     def _check_finite(self):
         """The combined moduli and the contact size that the keys give are finite and positive: keys each within their
         range can still over- or underflow together (E1 = 5e-324 MPa gives E* = 0; R = 1e300 mm an infinite

@@ -29,6 +29,23 @@ class Materials:
     nu1: float = _spec(0.3, -1, 0.5, lo_open=True, doc="sphere Poisson ratio")
     E2: float = _spec(4.35, 0, INF, lo_open=True, hi_open=True, unit="MPa", doc="substrate Young's modulus")
     nu2: float = _spec(0.5, -1, 0.5, lo_open=True, doc="substrate Poisson ratio")
+    # viscoelastic bodies (docs/viscoelastic.md): a Standard Linear Solid with E<i> its glassy (instantaneous) modulus,
+    # creep compliance C(t) = 1/E<i> + (1/E<i>_relaxed - 1/E<i>)(1 - exp(-t/tau<i>)), nu<i> constant; left out (the
+    # default) or "none": elastic
+    visco1: str | None = _spec(None, choices=("none", "sls"),
+                               doc="sphere material model: 'none' (or left out) elastic, 'sls' standard linear solid "
+                                   "(E1 glassy, E1_relaxed, tau1; needs a speed)")
+    E1_relaxed: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="MPa",
+                                     doc="sphere's relaxed (long-time) modulus of visco1 = 'sls', below E1")
+    tau1: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="s",
+                               doc="sphere's creep relaxation time of visco1 = 'sls'")
+    visco2: str | None = _spec(None, choices=("none", "sls"),
+                               doc="substrate material model: 'none' (or left out) elastic, 'sls' standard linear solid "
+                                   "(E2 glassy, E2_relaxed, tau2; needs a speed)")
+    E2_relaxed: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="MPa",
+                                     doc="substrate's relaxed (long-time) modulus of visco2 = 'sls', below E2")
+    tau2: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="s",
+                               doc="substrate's creep relaxation time of visco2 = 'sls'")
 
 
 @dataclass

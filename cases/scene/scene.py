@@ -2,7 +2,8 @@
 
 Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contract, see README):
 
-    [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate)
+    [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate); visco1, visco2 ("none", "sls"),
+                E1_relaxed, E2_relaxed, tau1, tau2 (s): Standard Linear Solid bodies, E<i> their glassy modulus
     [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry), or shape with its keys:
                 cone (slope), power (n, R), flat_rounded (b, R) (cases.scene.geometry)
     [load]      Fn; mu; ft (= Ft/(mu Fn)) or Ft; load_angle (direction of Ft from the x axis);
@@ -40,7 +41,7 @@ from importlib import resources
 
 
 from rollcontact.bem.errors import SceneError
-from rollcontact.bem.materials import MaterialPair
+from rollcontact.bem.materials import Material, MaterialPair
 from rollcontact.cases.arguments import arg
 from rollcontact.cases.scene.geometry import (
     check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
@@ -51,6 +52,7 @@ from rollcontact.cases.scene.keys import (
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
 from rollcontact.cases.scene.checks import SceneChecks
+from rollcontact.solver.visco.sls import StandardLinearSolid
 from rollcontact.cases.scene.overrides import (  # noqa: F401  (ALTERNATIVE_KEYS, SPELLINGS, other_spellings re-exported)
     ALTERNATIVE_KEYS, SPELLINGS, assignments_of, other_spellings, toml_value, with_overrides)
 
@@ -103,10 +105,14 @@ class Scene(SceneChecks, SceneLimits):
             kwargs = {k: check_key(sec, names[k], v) for k, v in values.items()}
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
+        if scene.viscoelastic and ("wheelrail" in data or scene.wheelrail_on):
+            raise SceneError("[materials] visco1 / visco2 = 'sls' with [wheelrail]: viscoelastic bodies are not "
+                             "supported in wheel-rail scenes; remove the viscoelastic keys or the [wheelrail] section")
         if "wheelrail" in data or scene.wheelrail_on:
             return scene._wheelrail_checked(data, run_limits)
         scene._check_rolling(data)
         scene._check_consistency()
+        scene._check_visco()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
@@ -240,9 +246,37 @@ class Scene(SceneChecks, SceneLimits):
 
     # --- derived quantities ----------------------------------------------------------------------
     @property
-    def material_pair(self) -> MaterialPair:
+    def viscoelastic(self) -> bool:
+        """True when a body is a Standard Linear Solid (materials.visco1 or visco2 = 'sls')."""
+        return "sls" in (self.materials.visco1, self.materials.visco2)
+
+    @property
+    def bodies(self) -> tuple:
+        """(sphere, substrate): each a bem Material, or a solver.visco StandardLinearSolid for visco<i> = 'sls'."""
         m = self.materials
-        return MaterialPair.from_moduli(m.E1, m.nu1, m.E2, m.nu2)
+        out = []
+        for i in (1, 2):
+            E, nu = getattr(m, f"E{i}"), getattr(m, f"nu{i}")
+            if getattr(m, f"visco{i}") == "sls":
+                out.append(StandardLinearSolid(E, getattr(m, f"E{i}_relaxed"), getattr(m, f"tau{i}"), nu))
+            else:
+                out.append(Material(E, nu))
+        return tuple(out)
+
+    @property
+    def sls_bodies(self) -> dict:
+        """{body index: StandardLinearSolid} of the viscoelastic bodies (empty for an elastic scene)."""
+        return {i: b for i, b in enumerate(self.bodies, start=1) if isinstance(b, StandardLinearSolid)}
+
+    @property
+    def material_pair(self) -> MaterialPair:
+        """The elastic pair; a viscoelastic body with its relaxed modulus (the long-time, quasi-static limit: the
+        normalisations a, d, p0, U0, the default grid and the grid's extent, which covers the largest contact, follow
+        it). The solvers get the effective pair of the step time (solver.visco.sls.effective_pair)."""
+        m = self.materials
+        E1 = m.E1_relaxed if m.visco1 == "sls" else m.E1
+        E2 = m.E2_relaxed if m.visco2 == "sls" else m.E2
+        return MaterialPair.from_moduli(E1, m.nu1, E2, m.nu2)
 
     @property
     def shape(self) -> str:

@@ -32,6 +32,11 @@ periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself;
 #: the creepages xi, eta (dimensionless) and phi (1/mm), the forces F_x, F_y (N) and moment M_z (N mm) on the
 #: sphere in Kalker's convention, and the stick fraction of the contact.
 CREEP_COLUMNS = ("xi", "eta", "phi", "F_x", "F_y", "M_z", "stick_fraction")
+#: Further columns of a sweep over a scene with viscoelastic bodies (docs/viscoelastic.md), added only when its runs
+#: have them: the pressure centroid along the rolling direction (mm), the rolling resistance moment (N mm), the viscous
+#: work of the last period (N mm) and the viscous power of steady rolling (W).
+VISCO_COLUMNS = ("pressure_centroid_x", "rolling_resistance_moment", "viscous_dissipation_per_period",
+                 "viscous_power")
 
 #: Further columns of a sweep over a [wheelrail] scene (cases.run.wheelrail_run), added only when its runs have them:
 #: the number of contact patches, the total force on the wheel in the track frame (N) and the wheelset centre's height
@@ -42,9 +47,11 @@ WHEELRAIL_COLUMNS = ("n_patches", "F_track_x", "F_track_y", "F_track_z", "z_ws")
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
 COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "U_perp": "mm", "dU_perp_per_period": "mm",
                 "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm",
+                "pressure_centroid_x": "mm", "rolling_resistance_moment": "N mm",
+                "viscous_dissipation_per_period": "N mm", "viscous_power": "W",
                 "F_track_x": "N", "F_track_y": "N", "F_track_z": "N", "z_ws": "mm"}
 _FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "U_perp", "dU_perp_per_period",
-                  "dissipation_per_period", "u_stat", "wall_time")
+                  "dissipation_per_period", "u_stat", "wall_time") + VISCO_COLUMNS
 _INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations", "n_patches")
 
 
@@ -61,6 +68,8 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
         columns = SUMMARY_COLUMNS + CREEP_COLUMNS      # a sweep over a [rolling] scene
     elif columns is SUMMARY_COLUMNS and any(r.get("n_patches") is not None for r in rows):
         columns = SUMMARY_COLUMNS + WHEELRAIL_COLUMNS  # a sweep over a [wheelrail] scene
+    if any(r.get("pressure_centroid_x") is not None for r in rows):
+        columns = tuple(columns) + VISCO_COLUMNS       # viscoelastic bodies
     header = list(keys) + [c for c in columns if c not in keys]
     text = io.StringIO(newline="")
     writer = csv.writer(text)

@@ -30,12 +30,16 @@ With step = dx and uncoupled materials every step is the steady problem's one-ce
 difference, the same spin offset), so after a few contact lengths the forces converge to `solve_steady`'s;
 coupled materials converge to the coupled steady state (cases.run.creep_run alternates it with the normal problem).
 
+Viscoelastic bodies (a `memory`, solver.visco.ViscoMemory): each solve sees the history displacement of the bodies'
+element states and advances them (step 0 ends at t = 0; with `cattaneo` the tangential load at rest takes one more
+step time, so step k ends at (k + 1) dt).
+
 Results in Kalker's convention (forces and moment on body 1; the moment about the contact centre), the solver
 results in the substrate convention of theory.md §0. Units: mm, N, MPa.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import math
 import time
 from typing import Iterator
@@ -63,7 +67,7 @@ class CreepStep:
     creepages (xi, eta, phi) of the step: the prescribed ones, or with prescribed forces (xi, eta) = dU / step (at
     step 0: zero for `rest`, the shift at rest over one step length for `cattaneo`); rigid_shift: the accumulated
     rigid slip of body 1 relative to body 2 (mm, sum of step (xi, eta)); outer iterations of the coupled loop, the
-    wall and process CPU time of the step (s).
+    wall and process CPU time of the step (s); the work the viscous dashpots of viscoelastic bodies dissipated in it.
     """
     step: int
     centre: float
@@ -76,6 +80,7 @@ class CreepStep:
     outer_iterations: int
     wall_time: float
     cpu_time: float
+    viscous_dissipation: float = 0.0      # N mm dissipated by viscoelastic bodies' dashpots in the step
 
     @property
     def stick_cells(self) -> int:
@@ -91,12 +96,13 @@ def rolling_steps(distance: float, step: float) -> int:
 
 
 def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0, forces=None, initial="rest",
-               params: StepParams = StepParams()) -> Iterator[CreepStep]:
+               params: StepParams = StepParams(), memory=None) -> Iterator[CreepStep]:
     """Roll body 1 along +x of the world-fixed grid of `op` (bem.HalfSpaceOperator) from the initial state, in
     steps of `step` mm over at least `distance` mm (`rolling_steps`), yielding the initial state (step 0) and each
     step. profile(X, Y, centre) -> h (mm), the undeformed gap about the contact centre (solver.rolling.profiles);
     Fn (N) and mu as in `run_path`; creepages xi, eta and spin phi (1/mm), or forces = (Fx, Fy) N on body 1 in place
-    of xi, eta. Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
+    of xi, eta; memory: the element states of viscoelastic bodies (solver.visco.ViscoMemory on op's effective pair, its
+    step time step / V), None for elastic ones. Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
     the initial state, before rolling) or when the contact reaches the grid's edge, GrossSlidingError for
     |F| >= mu Fn, ConvergenceError if a solver fails."""
     n = rolling_steps(distance, step)
@@ -136,10 +142,18 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         elif load == "creep":
             F = -forces                                                       # on the substrate
             kw = dict(extra_slip=creep_slip(centre, (0.0, 0.0))) if phi != 0.0 else {}
+        if memory is not None:
+            extra_n, extra_t = memory.terms()
+            kw["extra_slip"] = extra_t if "extra_slip" not in kw else kw["extra_slip"] + extra_t
+            kw["extra_displacement"] = extra_n
         normal, tang, outer = solve_coupled_step(
             op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal, tangential_params=params.tangential,
             coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess, **kw)
         check_contact_inside(normal.contact, k, (centre, 0.0))
+        viscous = 0.0
+        if memory is not None:
+            total = memory.advance(normal.pressure, tang.traction, tang.displacement)
+            tang, viscous = replace(tang, displacement=total), memory.dissipation
         tau = tang.traction
         moment = -float(((X - centre) * tau[1] - Y * tau[0]).sum() * dA)
         if load == "rest":
@@ -149,7 +163,7 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         else:
             creep = (float(tang.shift_increment[0]) / step, float(tang.shift_increment[1]) / step)
         return CreepStep(k, centre, normal, tang, -np.asarray(tang.force, dtype=float), moment, (*creep, phi),
-                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0)
+                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0, viscous)
 
     rec = solve(0, 0.0, None, "rest")
     if initial == "cattaneo":
@@ -157,6 +171,7 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         rec.outer_iterations += rest.outer_iterations
         rec.wall_time += rest.wall_time
         rec.cpu_time += rest.cpu_time
+        rec.viscous_dissipation += rest.viscous_dissipation
     cols = np.nonzero(rec.normal.contact.any(axis=0))[0]
     if cols.size and cols[-1] + math.ceil(n * step / grid.dx - 1e-9) >= grid.nx - 1:
         end, front = grid.x[-1] + grid.dx / 2, grid.x[cols[-1]] + grid.dx / 2

@@ -25,7 +25,8 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
-                       coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None):
+                       coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None,
+                       extra_displacement=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -47,6 +48,9 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     extra_slip : (2, ny, nx) mm, a given slip of the step added to the tangential problem's (solve_tangential's
         `extra_slip`), e.g. the rigid creep slip of a rolling step (solver.creep.world); it is not part of the
         returned `displacement`.
+    extra_displacement : (ny, nx) mm, a given normal displacement of the step added to the normal problem's
+        (solve_normal's `extra_displacement`), e.g. the history displacement of viscoelastic bodies (solver.visco); it
+        is part of the returned NormalResult's `displacement`.
 
     Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
     with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
@@ -68,8 +72,10 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     if (F is None) == (shift is None):
         raise InputError("solve_coupled_step: give exactly one of F = (Fx, Fy) N or shift = (dUx, dUy) mm")
     given = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
+    given_normal = None if extra_displacement is None else np.asarray(extra_displacement, dtype=float)
     if not op.coupled:
-        normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
+        normal = solve_normal(op, profile, force=Fn, initial=initial_p, extra_displacement=given_normal,
+                              params=normal_params)
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
                                 params=tangential_params)
         if given is not None:
@@ -82,8 +88,9 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     change = np.inf
     n_products = t_products = t_steps = 0
     for outer in range(1, max_outer + 1):
+        coupling = op.normal_from_tangential(tau[0], tau[1])
         normal = solve_normal(op, profile, force=Fn, initial=p_guess,
-                              extra_displacement=op.normal_from_tangential(tau[0], tau[1]),
+                              extra_displacement=coupling if given_normal is None else coupling + given_normal,
                               params=normal_params)
         extra = op.tangential_from_pressure(normal.pressure - p_prev)
         if given is not None:

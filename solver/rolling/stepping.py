@@ -8,6 +8,9 @@ One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
     3. bound g = mu p_n; tangential shift problem with the force F_n and the previous traction
        tau_{n-1} as memory                                                  -> tau_n, dU_n; U_n = U_{n-1} + dU_n;
     4. coupled materials only: repeat 2-3 with the coupling terms until both settle (solver.rolling.coupled).
+    With viscoelastic bodies (a `memory`, solver.visco.ViscoMemory) steps 2-3 see the history displacement of the
+    bodies' element states (the normal problem as an extra displacement, the tangential one the change of its
+    tangential part as extra slip), and the states then take the step's tractions.
 
 The path is prescribed: a loading phase (Fn alone, then the tangential force in `ramp_steps` increments,
 then any further force levels) followed by `periods` triangle-wave periods of the centre (loads that oscillate
@@ -20,7 +23,7 @@ U.F > 0 under a steady force (theory §0).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 import time
 from typing import Iterator
@@ -189,16 +192,20 @@ class StepRecord:
     outer_iterations: int
     wall_time: float
     dissipation: float = 0.0      # frictional work of the step (N mm), solver.rolling.energy.frictional_work
+    viscous_dissipation: float = 0.0   # work the viscous dashpots of viscoelastic bodies dissipated (N mm)
+    memory_states: dict | None = None  # the viscoelastic element states after the step (MPa), by name
 
 
 def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepParams(),
-             state: StepState | None = None) -> Iterator[StepRecord]:
+             state: StepState | None = None, memory=None) -> Iterator[StepRecord]:
     """Step along `path` from `state` (default: unloaded), yielding one StepRecord per step.
 
     op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.rolling.profiles;
     Fn (N) the normal force, constant unless the path carries one per step (`path.normal_forces`, checked here
     before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
-    carries the frictional work of its step (solver.rolling.energy.frictional_work). Raises ContactEdgeError if
+    carries the frictional work of its step (solver.rolling.energy.frictional_work). memory: the element states of
+    viscoelastic bodies (solver.visco.ViscoMemory, of op's effective pair and path.step_time; restored to `state` by
+    the caller), None for elastic bodies. Raises ContactEdgeError if
     the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
     solver fails.
     """
@@ -222,16 +229,23 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             # a bilinear sub-cell shift smears the contact edge and measured worse: 10.0 vs 9.0 it/step)
             move = centre - path.centres[state.step]
             guess = shifted_field(state.pressure, round(move[1] / grid.dy), round(move[0] / grid.dx))
+        extra_n, extra_t = (None, None) if memory is None else memory.terms()
         normal, tangential, outer = solve_coupled_step(
             op, h, Fn if path.normal_forces is None else path.normal_forces[n], path.forces[n], state.pressure,
             state.traction, mu=mu,
             normal_params=params.normal, tangential_params=params.tangential,
-            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess)
+            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess,
+            extra_slip=extra_t, extra_displacement=extra_n)
         check_contact_inside(normal.contact, n, centre)
+        viscous, states = 0.0, None
+        if memory is not None:
+            total = memory.advance(normal.pressure, tangential.traction, tangential.displacement)
+            tangential = replace(tangential, displacement=total)
+            viscous, states = memory.dissipation, memory.states()
         state = StepState(n, normal.pressure, tangential.traction,
                           state.rigid_shift + tangential.shift_increment, normal.approach)
         work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
-        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work)
+        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, viscous, states)
 
 
 def shifted_field(field, rows, cols):
