@@ -3,9 +3,10 @@
 Every family of figures of the README walkthrough and the study pages is drawn from small real runs (coarse grids,
 a few periods; ~20 s on a quiet machine): `plot` of a run (history, maps, centre lines; seed Figs. 4-7), of a
 ratcheting run, of a Mindlin-Deresiewicz run (history and loads), of a run with subsurface stresses, of a
-[rolling] run, of a wheel-rail run; `compare`; `plot` of a sweep folder (u_sd, limits with limit-search brackets,
-ratcheting, the alignment panels), of a phase sweep and of a phase limit search (docs/oscillating_loads.md), of a
-cone sweep (docs/shapes.md), of a sweep over a wheel's lateral displacement (docs/wheelrail.md); `creep-curve`.
+viscoelastic run and a viscoelastic [rolling] run (maps, pressure), of a wheel-rail run; `compare`; `plot` of a
+sweep folder (u_sd, limits with limit-search brackets, ratcheting, the alignment panels), of a phase sweep and of
+a phase limit search (docs/oscillating_loads.md), of a cone sweep (docs/shapes.md), of a sweep over a wheel's
+lateral displacement (docs/wheelrail.md); `creep-curve`.
 Each figure is checked as it is saved: the text the renderer actually draws (titles, axis and tick labels,
 legends, annotations, colour-bar labels) is measured with `Text.get_window_extent`. Two boxes overlapping by more
 than OVERLAP_PX in both directions, a box leaving the figure, and a data label (an annotation) crossing the frame
@@ -142,6 +143,8 @@ ROOT = Path(__file__).resolve().parents[2]
 FINE = ["--set", "grid.dx=0.6", "--set", "motion.dW=0.6", "--set", "motion.periods=5", "--set",
         "solver.shakedown_tol=1e-3", "-q"]
 CREEP = ["--set", "grid.dx=1.4"]
+VISCO = ["--set", "materials.E2=8.7", "--set", "materials.E2_relaxed=4.35", "--set", "materials.tau2=0.1", "--set",
+         'materials.visco2="sls"']
 
 
 def make_inputs(root: Path):
@@ -169,8 +172,11 @@ def make_inputs(root: Path):
     # a non-spherical profile (docs/shapes.md)
     _cli("sweep", ROOT / "docs" / "shapes" / "cone.toml", "--vary", "load.ft=0.2,0.5,0.8", "--vary",
          "motion.angle=0,90", *COARSE, "-o", root / "cone_sweep", "--jobs", "1", "-q")
-    # rolling with creepage: a steady run
-    _cli("run", ROOT / "cases" / "creep_steady.toml", *CREEP, "-q", "-o", runs / "creep.h5")
+    # viscoelastic substrate (docs/viscoelastic.md): the walkthrough's run, and steady rolling with creepage
+    _cli("run", *FINE, *VISCO, "--set", "motion.speed=47.9", "-o", runs / "visco.h5")
+    _cli("run", ROOT / "cases" / "creep_steady.toml", *CREEP, "--set", "materials.E2_relaxed=105e3", "--set",
+         "materials.tau2=0.001", "--set", 'materials.visco2="sls"', "--set", "rolling.speed=1000", "-q", "-o",
+         runs / "creep.h5")
     # a wheel on a rail (docs/wheelrail.md): one position with two patches, a sweep over the lateral displacement
     wheelrail = ROOT / "cases" / "mbench_s1002_uic60.toml"
     _cli("run", wheelrail, "--set", "wheelrail.y=5.5", "-q", "-o", runs / "y55.h5")
@@ -181,7 +187,7 @@ def draw_all(root: Path, out: Path) -> dict:
     """Every figure the CLI draws from make_inputs' files, into `out`: {figure stem: defects}."""
     runs = root / "runs"
     with checked_figures() as found:
-        for name in ("perp", "perp_rat", "md", "creep", "y55"):
+        for name in ("perp", "perp_rat", "md", "visco", "creep", "y55"):
             _cli("plot", runs / f"{name}.h5", "-o", out, "--overwrite")
         _cli("compare", runs / "par.h5", runs / "perp.h5", "-o", out, "--overwrite")
         for folder in ("sweep", "osc_ft", "osc_lim", "cone_sweep", "sweep_y"):
@@ -211,6 +217,7 @@ FAMILIES = {
     "phase": ["osc_ft_phase", "osc_lim_phase_limits"],
     "shape": ["cone_sweep_usd"],
     "creep": ["creep_maps", "creep_steady_creep_xi"],
+    "viscoelastic": ["visco_history", "visco_step", "creep_pressure"],
     "wheelrail": ["y55_wheelrail", "sweep_y_contact_points", "sweep_y_forces"],
 }
 
