@@ -63,7 +63,7 @@ from rollcontact.bem._fftw import pyfftw
 
 #: stress components, in the order of every (6, ...) array of this module (the frame x, y, z = depth)
 COMPONENTS = ("s_xx", "s_yy", "s_zz", "s_yz", "s_xz", "s_xy")
-#: the 15 distinct kernels: (traction, component) for each row of `corner_functions`' output
+#: the 15 distinct kernels: (traction, component) for each row of `_corners_at`' output
 KERNELS = (("p", "s_xx"), ("p", "s_yy"), ("p", "s_zz"), ("p", "s_yz"), ("p", "s_xz"), ("p", "s_xy"),
            ("q_x", "s_xx"), ("q_x", "s_yy"), ("q_x", "s_yz"), ("q_x", "s_xz"), ("q_x", "s_xy"),
            ("q_y", "s_xx"), ("q_y", "s_yy"), ("q_y", "s_yz"), ("q_y", "s_xy"))

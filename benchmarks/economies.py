@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/economies.py [--repeats 3]
 
-1. Grid sized to the swept contact (cases.run.scene_grid: contact box of every centre the path visits plus
+1. Grid sized to the swept contact (cases.run.discretise.scene_grid: contact box of every centre the path visits plus
    grid.margin): element counts for W = 1.2 ... 3.4 mm (the seed's range, dx = dy = 0.2 mm), both
    alignments, against the seed's 3050-4200 elements and against a naive square grid that covers the swept
    region in both directions ([-a - W - m, a + W + m]^2); the padded FFT size (what a product costs) too.

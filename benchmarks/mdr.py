@@ -21,7 +21,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 
-import _record
+import _record  # noqa: E402
 from rollcontact.bem.materials import MaterialPair  # noqa: E402
 from rollcontact.solver.mdr import limits as L  # noqa: E402
 from rollcontact.solver.analytic import HertzSphere  # noqa: E402

@@ -1,4 +1,4 @@
-"""Benchmark of the normal solver (solver/normal.py, NormCG) on the Hertz sphere of the seed's scene.
+"""Benchmark of the normal solver (solver/normal/normcg.py, NormCG) on the Hertz sphere of the seed's scene.
 
 Scene (docs/theory.md §7.1): R = 40 mm, E1 = 206e3 MPa, nu1 = 0.3, E2 = 4.35 MPa, nu2 = 0.5, Fn = 21.19 N
 (a = 4.7857 mm, d = 0.572572 mm, p0 = 0.441756 MPa). Square grids of n^2 cells with dx chosen so that

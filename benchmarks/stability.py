@@ -167,7 +167,6 @@ def rolling_case(group, label, overrides, kappa=None, periods=None):
     worst = None
     dA = (d.x[1] - d.x[0]) * (d.y[1] - d.y[0]) if len(d.x) > 1 else 0
     for i, step in enumerate(d.field_steps):
-        k = int(np.flatnonzero(np.asarray(h["step"]) == step)[0])
         inv = invariants(d.fields["p"][i], np.stack([d.fields["tau_x"][i], d.fields["tau_y"][i]]), scene.load.mu,
                          (scene.Ft * scene.load_direction[0], scene.Ft * scene.load_direction[1]), dA,
                          scene.load.Fn)

@@ -21,7 +21,7 @@ exception but GrossSlidingError is a finding); the invariants of tests/solver/ta
 displacement = A tau on the whole grid; the traction and shift against a solve from the plain start with the
 product memo cleared (flag above 1e-5 max g / 1e-5 relative); for a prescribed shift, the force-mode solve at the
 returned force must give back the traction, and the shift unless it ends with no stick element (then it reports
-the sub-element stick point's shift, `solver.tangential._stick_point_shift`; such results are also held to the
+the sub-element stick point's shift, `solver.tangential.shift._stick_point_shift`; such results are also held to the
 stick point's 8 degrees of slip alignment instead of acos(0.999)). Products: median / 90th percentile / max per
 category.
 Writes DIR/tangential_fuzz.json (-o DIR, default results/benchmarks/).
@@ -141,7 +141,7 @@ def violations(sc, r, g, force):
     big = (region == 2) & (smag > 100 * slip_tol)
     align = 0.999
     if np.count_nonzero(region == 1) <= 1:
-        # the shift may be the sub-element stick point's (solver.tangential._stick_point_shift), which keeps the
+        # the shift may be the sub-element stick point's (solver.tangential.shift._stick_point_shift), which keeps the
         # resolved slips (above STICK_POINT_RESOLVED of the largest) within acos(STICK_POINT_ALIGN) of -tau
         big &= smag > T.STICK_POINT_RESOLVED * smag[region == 2].max(initial=0.0)
         align = T.STICK_POINT_ALIGN

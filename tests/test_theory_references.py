@@ -21,7 +21,7 @@ _PIT = r"\bP\d{1,2}\b(?:\s?[-–]\s?P?\d{1,2})?"
 #: a group of references separated by commas, slashes or "and"
 GROUP = re.compile(rf"(?:{_SEC}|{_PIT})(?:(?:\s*[,/]\s*#?\s*|\s+(?:and|or)\s+)(?:{_SEC}|{_PIT}))*")
 #: sources whose own sections a section sign may cite (the words just before the group): a named work, an
-#: author-year citation ("Saad 2003, Iterative Methods ..., §9.3"), or another page of the repository ("docs/x.md, §3")
+#: author-year citation ("Saad 2003, Iterative Methods ..., §9.3"), or another page of the repository ("docs/user_guide.md, §3")
 OTHER_SOURCES = re.compile(r"((seed|Johnson|Kalker|CONTACT|user guide|Popov|Hamilton|Love|Mindlin|Sect|paper|"
                            r"Carslaw|Jaeger|Vollebregt|Hunter|Iwnicki|Polach|section|chapter|ch\.)(?:'s)?\W{0,3}"
                            r"(\d{4}\W{0,3})?|[A-Z][a-z]+\S* (et al\. )?(\d{4}|\(\d{4}\))[^()§]*|\.md\W{0,3})$", re.I)

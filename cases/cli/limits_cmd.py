@@ -7,7 +7,7 @@
 Dimensionless inputs (seed Eq. 9): w = W/a, f_t = Ft/(mu Fn); outputs u = U/U0 with U0 = mu E* d/G*.
 Without --angle/--kappa the three reference kappas are shown side by side: parallel (1.0) and
 perpendicular (1.1), the seed's fits to CONTACT and experiments, and 1.5, the pure MDR (seed Eq. 12).
---angle uses mdr_limits.kappa_for_angle (sin^2 interpolation between 0 and 90 deg - an assumption).
+--angle uses solver.mdr.limits.kappa_for_angle (sin^2 interpolation between 0 and 90 deg - an assumption).
 
 Over `rollcontact.limits` (cases.closed_forms). `register(subparsers)` is called by cases/cli/main.py; `run_cli(argv)`
 is a standalone entry for tests. Bad values print a message naming the parameter and return exit code 2.

@@ -18,7 +18,6 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.solver.mdr import limits as lim
 
 from rollcontact.cases.plots.common import MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR
@@ -35,10 +34,11 @@ def study_angles(points) -> list[float]:
 
 
 def kappa_by(points, key) -> dict:
-    """key(point) -> fit_kappa (seed Eq. 13) over the shaken-down runs with w > 0 that share that key."""
+    """key(point) -> fit_kappa (seed Eq. 13) over the runs with w > 0 that share that key and that Eq. 13 describes
+    (shaken down under constant loads, `cases.plots.sweep_figures.Point.on_eq13`)."""
     fits = {}
     for g in sorted({key(p) for p in points}):
-        sel = [p for p in points if key(p) == g and p.state in SETTLED_STATES and p.u_sd is not None and p.w > 0]
+        sel = [p for p in points if key(p) == g and p.on_eq13 and p.w > 0]
         if sel:
             try:
                 fits[g] = lim.fit_kappa([p.f_t for p in sel], [p.w for p in sel], [p.u_sd for p in sel])
@@ -137,12 +137,12 @@ def angle_figure(points, limits, title):
     ax.legend(fontsize=7)
 
     ax = axes[0, 1]
-    for (f_t, w), sel in _by([p for p in study if p.state in SETTLED_STATES and p.u_sd is not None],
-                             lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
-        ax.plot([p.angle for p in sel], [p.u_sd for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1)
-        ax.annotate(f"f_t={f_t:g}, w={w:g}", (sel[-1].angle, sel[-1].u_sd), xytext=(3, 0),
-                    textcoords="offset points", fontsize=6, color=colour(w))
+    for (f_t, w), sel in _by([p for p in study if p.on_eq13], lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
+        ax.plot([p.angle for p in sel], [p.u_sd for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1,
+                label=f"f_t={f_t:g}, w={w:g}")
     ax.set_ylabel("$u_{sd} = U_{sd}/U_0$ (shakedown runs)")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=6, ncol=2)
 
     ratcheting = _by([p for p in study if p.state == "ratcheting" and p.du is not None],
                      lambda p: (round(p.f_t, 6), round(p.w, 6)))
@@ -159,7 +159,7 @@ def angle_figure(points, limits, title):
             ax.legend(fontsize=7)
 
     ax = axes[1, 2]
-    for (f_t, w), sel in _by([p for p in study if p.state in SETTLED_STATES and p.u_perp is not None],
+    for (f_t, w), sel in _by([p for p in study if p.on_eq13 and p.u_perp is not None],
                              lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
         ax.plot([p.angle for p in sel], [p.u_perp for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1,
                 label=f"f_t={f_t:g}, w={w:g}")

@@ -73,6 +73,5 @@ def loads_figure(view: RunView):
         ax2.legend(fontsize=8, loc="lower right")
     amp = (f"$f_t$ = {view.scene.f_t:.3g} ± {ld.ft_amplitude:.3g}, $F_n$ = {ld.Fn:.4g} N ± "
            f"{100 * ld.fn_amplitude:.3g} %, phase {ld.phase:g}°, $w$ = {view.w:.3g}")
-    who = view.label if view.w > 0 else "no rolling" + (" (MDR 1-D)" if view.is_mdr else "")
-    fig.suptitle(f"{who}: {amp}  ({view.state})", fontsize=11)
+    fig.suptitle(f"{view.label}: {amp}  ({view.state.replace('_', ' ')})", fontsize=11)
     return fig

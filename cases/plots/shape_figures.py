@@ -16,7 +16,6 @@ import numpy as np
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
-from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.cases.plots.common import FIGSIZE, MDR_COLOUR, save_figure, setting_colour, setting_of
 
 MARKERS = {"parallel": "o", "perpendicular": "^"}
@@ -42,7 +41,7 @@ def shape_usd_figure(points, scene, limits, title):
                        alpha=0.25)
     handles = ax.get_legend_handles_labels()[0]
     for group in sorted({p.group for p in points}):
-        sel = [p for p in points if p.group == group and p.state in SETTLED_STATES and p.u_sd is not None]
+        sel = [p for p in points if p.group == group and p.on_eq13]
         for p in sel:
             colour = MDR_COLOUR if p.mdr else setting_colour(p.angle)
             ax.plot(p.f_t, p.u_sd, "s" if p.mdr else MARKERS.get(p.setting, "D"), color=colour, mec="k", ms=7)
@@ -59,7 +58,7 @@ def shape_usd_figure(points, scene, limits, title):
     ax.set_xlim(0, 1)
     ax.set_ylim(0, 1.02)
     ax.grid(alpha=0.3)
-    n_rat = sum(p.state not in SETTLED_STATES for p in points)
+    n_rat = sum(not p.on_eq13 for p in points)
     ax.set_title(f"Shakedown displacement, {scene.shape} profile: {title}\n{len(points)} runs, {n_rat} not in "
                  "shakedown (not shown); curves: the MDR of this profile", fontsize=10)
     return fig

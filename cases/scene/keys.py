@@ -127,7 +127,7 @@ class Load:
     load_angle: float = _spec(0.0, -360, 360, unit="deg", doc="direction of Ft from the x axis")
     ramp_steps: int = _spec(1, 1, 10000, doc="increments from 0 to Ft")
     levels: list = _spec([], -1, 1, doc="further f_t levels after the ramp (unloading, reversal)")
-    # loads oscillating within each period (docs/theory.md §11.2-11.3, cases.scene.scene._check_oscillation):
+    # loads oscillating within each period (docs/theory.md §11.2-11.3, cases.scene.scene.Scene._check_oscillation):
     # f_t(theta) = ft + ft_amplitude sin(m theta + phase), Fn(theta) = Fn (1 + fn_amplitude sin(m theta + phase))
     ft_amplitude: float = _spec(0.0, 0, 1, doc="amplitude of f_t around its mean ft, in units of mu Fn")
     fn_amplitude: float = _spec(0.0, 0, 1, hi_open=True,

@@ -48,7 +48,7 @@ STALL_WINDOW = 20
 class SteadyParams:
     """Stop when no traction changes by more than tol * (largest bound, or largest traction without friction
     limit) in a sweep; at most max_sweeps sweeps, then ConvergenceError. omega: relaxation of the stick elements
-    (CONTACT's OMEGAH; 1 is plain Gauss-Seidel: over-relaxation measured 1.6-5 x slower, benchmarks/README)."""
+    (CONTACT's OMEGAH; 1 is plain Gauss-Seidel: over-relaxation measured 1.6-5 x slower, benchmarks/README.md)."""
     tol: float = 1e-6
     max_sweeps: int = 3000
     omega: float = 1.0

@@ -38,7 +38,7 @@ def shakedown_limit_ft(*, R, E_star, G_star, Fn, mu, W, dW, periods, f_t_lo=0.0,
     lower end up, 'ratcheting' the upper end down.  An 'undecided' probe is rerun with twice the periods
     (at most `max_period_doublings` times), then ConvergenceError.  f_t_lo must shake down and f_t_hi must
     ratchet (checked).  Stops when the bracket is narrower than f_t_tol.  Compare with
-    mdr_limits.f_t_lim(W/a, KAPPA_MDR) (seed Eq. 12 at the limit).
+    solver.mdr.limits.f_t_lim(W/a, KAPPA_MDR) (seed Eq. 12 at the limit).
     """
     common = dict(R=R, E_star=E_star, G_star=G_star, Fn=Fn, mu=mu, W=W, dW=dW, n_springs=n_springs, ds=ds)
     runs = retries = 0

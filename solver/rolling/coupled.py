@@ -36,8 +36,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     Fn : normal force (N). F : (Fx, Fy) tangential force on the substrate (N), or None with `shift`.
     previous_pressure : (ny, nx) p' of the previous step (MPa), or None for zero (virgin contact).
     previous_traction : (2, ny, nx) tau' of the previous step (MPa).
-    mu : Coulomb friction coefficient (the bound is g = mu p). [Not in the issue's signature: the bound
-        needs it.]
+    mu : Coulomb friction coefficient (the bound is g = mu p).
     normal_params, tangential_params : the inner solvers' tolerances.
     coupling_tol : stop when max|p_k - p_{k-1}| <= coupling_tol max p_k and
         max|tau_k - tau_{k-1}| <= coupling_tol mu max p_k.

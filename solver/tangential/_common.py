@@ -1,9 +1,9 @@
 """Shared parts of the tangential solver's element loops (`solver.tangential`): the numba decorator and the
 magnitude of a traction or slip, with the conventions of all the kernels.
 
-The kernels, compiled with numba (cache=True), live by idea in `_tangential_division` (stick/slip division,
-shift fit, releases), `_tangential_cg` (residual, curvature operator and vector operations of the linearised
-problem) and `_tangential_moves` (the step back onto the discs, the force restoration and the turns of
+The kernels, compiled with numba (cache=True), live by idea in `_division` (stick/slip division,
+shift fit, releases), `_linearised` (residual, curvature operator and vector operations of the linearised
+problem) and `_moves` (the step back onto the discs, the force restoration and the turns of
 reversed slips). All fields are (ny, nx) or (2, ny, nx) float64 arrays on the grid; `region` is int8 with
 0 = exterior (bound g = 0), 1 = stick (|tau| < g), 2 = slip (|tau| = g). Tractions and bounds in MPa,
 displacements and slips in mm. Nothing here allocates a grid-sized array; every kernel writes into buffers

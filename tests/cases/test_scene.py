@@ -133,8 +133,8 @@ def test_a_sphere_becomes_an_ellipsoid_when_both_radii_are_given():
 @pytest.mark.parametrize("first, second", [("load.ft=0.3", "load.Ft=5"), ("motion.w=0.2", "motion.W=1.0"),
                                            ("geometry.Rx=20", "geometry.R=40")])
 def test_both_spellings_in_one_set_of_overrides_are_refused_naming_both(first, second):
-    """Within one command the two spellings of a quantity contradict each other (as in a scene file); the last one
-    used to win silently. Repeating the same key is an ordinary override (the last wins)."""
+    """Within one command the two spellings of a quantity contradict each other (as in a scene file): neither may win
+    silently. Repeating the same key is an ordinary override (the last wins)."""
     with pytest.raises(SceneError, match=rf"overrides '{first}' and overrides '{second}': give either"):
         default_scene().with_overrides([first, second])
     assert default_scene().with_overrides(["load.ft=0.3", "load.ft=0.4"]).f_t == 0.4
@@ -159,8 +159,7 @@ def test_unreadable_or_invalid_files_give_scene_errors(tmp_path):
 
 
 def test_w_and_W_share_one_range():
-    """w = W/a was limited to [0, 1] while W = 10 mm (w = 2.09) ran: both are open above now (the step limit
-    bounds them)."""
+    """w = W/a is open above like W (W = 10 mm is w = 2.09 on the paper scene); the step limit bounds both."""
     s = default_scene().with_overrides(["motion.w=1.5"])
     assert s.amplitude == pytest.approx(1.5 * s.contact_radius)
     data = default_scene().to_dict()

@@ -27,7 +27,7 @@ def _ellipse(ratio, nu, n, ny=None, normal_force=1.0):
 
 def _linear_coefficients(ratio, nu, n):
     """C11, C22, C23 of the solver: -Fx/(G c^2 xi), -Fy/(G c^2 eta), -Fy/(G c^3 phi) with G = c = 1."""
-    problem, pressure = _ellipse(ratio, nu, n)  # default tol 1e-6: forces converged to ~1e-8 (benchmarks/README)
+    problem, pressure = _ellipse(ratio, nu, n)  # default tol 1e-6: forces converged to ~1e-8 (benchmarks/README.md)
     fx = solve_steady(problem, pressure, math.inf, xi=1e-3).force[0]
     fy = solve_steady(problem, pressure, math.inf, eta=1e-3).force[1]
     fs = solve_steady(problem, pressure, math.inf, phi=1e-3).force[1]
@@ -154,9 +154,9 @@ def slender():
 
 @pytest.mark.parametrize("s", [0.2, 0.5, 0.8])
 def test_carter_traction_and_stick_zone_at_mid_length(slender, s):
-    """Mid-length row of the slender ellipse against Carter's 2-D traction: rms difference within 2 % of mu p0
-    (measured 0.5 / 0.7 / 1.1 % at s = 0.2 / 0.5 / 0.8; the pointwise difference peaks at the stick/slip kink, 2.5-6.6 %
-    in one cell), the stick zone one block at the leading edge with width 2c = 2a(1 - s) within 1.5 cells (measured
+    """Mid-length row of the slender ellipse against Carter's 2-D traction: rms difference within 1.1 % of mu p0, as
+    docs/creep_rolling.md states (measured 0.48 / 0.65 / 1.095 % at s = 0.2 / 0.5 / 0.8; the pointwise difference
+    peaks at the stick/slip kink, 2.5-6.6 % in one cell), the stick zone one block at the leading edge with width 2c = 2a(1 - s) within 1.5 cells (measured
     within 0.5 cells), and the row's force ratio sum tau / (mu sum p) within 2 % of Carter's 1 - (1 - s)^2
     (measured +0.9 / +0.8 / +0.6 %)."""
     problem, pressure, mu, p0, results = slender
@@ -166,7 +166,7 @@ def test_carter_traction_and_stick_zone_at_mid_length(slender, s):
     inside = pressure[j0] > 0
     tau = -res.traction[0, j0]
     carter = _carter_traction(x, 1.0, s, mu * p0)
-    assert np.sqrt(np.mean((tau - carter)[inside] ** 2)) < 0.02 * mu * p0
+    assert np.sqrt(np.mean((tau - carter)[inside] ** 2)) < 0.011 * mu * p0
     stick = np.nonzero(res.stick[j0])[0]
     assert stick[-1] == np.nonzero(inside)[0][-1] and np.all(np.diff(stick) == 1)
     assert abs(stick.size * problem.grid.dx - 2 * (1 - s)) <= 1.5 * problem.grid.dx

@@ -1,5 +1,4 @@
-"""1-D MDR simulator of oscillating rolling (solver.mdr, mdr_step, _mdr_kernels, mdr_bisection; docs/theory.md §8.2-8.3,
-seed Eqs. 4-5, 12).
+"""1-D MDR simulator of oscillating rolling (solver.mdr: step, _kernels, bisection; docs/theory.md §8.2-8.3, seed Eqs. 4-5, 12).
 
 Scene of the seed (Table 1, docs/theory.md P1-P5): R = 40 mm, mu = 0.93, Fn = 21.19 N, steel on rubber.
 Runtime: every run below takes 3-150 ms (numba kernel, ~40 us per step at 4001 springs).
@@ -17,6 +16,8 @@ from rollcontact.solver.mdr._kernels import _approach_kernel, _rigid_shift_kerne
 from rollcontact.solver.mdr.simulate import simulate_mdr
 from rollcontact.solver.mdr.bisection import shakedown_limit_ft
 from rollcontact.solver.mdr.step import approach_for_force, rigid_shift
+
+from reference_data import RATCHET_RATIO
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 SCENE = dict(R=40.0, E_star=PAIR.E_star, G_star=PAIR.G_star, Fn=21.19, mu=0.93)
@@ -77,8 +78,8 @@ def test_shakedown_displacement_converges_to_mdr_equilibrium_eq12(w, f_t):
 @pytest.mark.parametrize("w, f_t", [(0.1, 0.6), (0.23, 0.6), (0.4, 0.3)])
 def test_theory_claim_4001_springs_ten_periods_within_1e5(w, f_t):
     # docs/theory.md §8.3: 4001 springs reach Eq. 12 to 1e-5 within 5-10 periods (w = 0.23, f_t = 0.6 is the
-    # slowest: still du = 8e-6 after period 10, error 4e-6). Both bounds are the theory's claim, not fitted:
-    # measured 2026-11-25, periods_to_shakedown 3 / 7 / 6 and errors 2e-8 / 4.2e-6 / 7.7e-7.
+    # slowest: still du = 8e-6 after period 10, error 4e-6). Both bounds are the theory's claim, not fitted
+    # (periods_to_shakedown 3 / 7 / 6 and errors 2e-8 / 4.2e-6 / 7.7e-7).
     r = run(f_t, w, nq=50, periods=10, n_springs=4001)
     assert r.state == "shakedown" and r.classification.periods_to_shakedown <= 10
     assert abs(r.classification.u_sd - L.u_shakedown(f_t, w)) < 1e-5
@@ -109,11 +110,10 @@ def test_shakedown_limit_by_bisection_matches_mdr_closed_form(w):
 
 
 # ------------------------------------------------------------------------------------- ratcheting
-# Pure-MDR ratcheting increment per period, as du / (sqrt(u_stat) (w - w_lim,MDR)) (docs/theory.md §8.5). No closed form
-# is
-# known to us, so the reference is the program's own converged value: 16001 springs, nq = W/dW = 400 and 1600,
-# extrapolated to dW -> 0 with order 1 (measured 2026-11-25 with run(f_t, w, nq=nq, n_springs=16001); the
-# extrapolation from nq = 100/400 agrees to 1e-5). Measured ratios:
+# Pure-MDR ratcheting increment per period, as du / (sqrt(u_stat) (w - w_lim,MDR)) (docs/theory.md §8.5). No closed form is
+# known to us, so the reference is the program's own converged value (regression data, tests/reference_data.py,
+# mdr_ratchet_ratio): 16001 springs, nq = W/dW = 400 and 1600, extrapolated to dW -> 0 with order 1 (the
+# extrapolation from nq = 100/400 agrees to 1e-5). Ratios:
 #   (w, f_t)     nq 25 (1001 springs)  nq 100    nq 400    nq 1600   dW -> 0   du / seed Eq. 21 (perpendicular)
 #   (0.3, 0.7)   4.58710               4.59888   4.60186   4.60261   4.60286   7.88
 #   (0.5, 0.5)   4.51402               4.53236   4.53701   4.53817   4.53856   8.52
@@ -124,11 +124,10 @@ def test_shakedown_limit_by_bisection_matches_mdr_closed_form(w):
 # 4x finer dW: about second order), plus the spring effect <= 2.5e-5 and the reference's own 1e-5: 1.35e-4,
 # rounded up to RATIO_TOL = 2e-4 (4e-5 relative). Extrapolating a first-order error as if it were second order
 # would be off by 3e-3 ... 6e-3, and the single nq = 25 run is off by 0.016-0.032: both fail it.
-# (This replaces the band 4.0 < ratio < 4.8, a range around the three cases that no error estimate had set.)
-RATCHET_RATIO = {(0.3, 0.7): 4.60286, (0.5, 0.5): 4.53856, (0.7, 0.3): 4.37761}
 RATIO_TOL = 2e-4
 
 
+@pytest.mark.regression
 @pytest.mark.parametrize("w, f_t", list(RATCHET_RATIO))
 def test_ratcheting_increment_is_the_pure_mdr_one_not_the_seed_regression(w, f_t):
     """docs/theory.md §8.5: pure-MDR increments ~ 4.4-4.6 sqrt(u_stat) (w - w_lim,MDR) per period, far above the seed's

@@ -1,4 +1,4 @@
-"""Physics tests of the frictionless normal solver (solver/normal.py, docs/theory.md §4, §7.1).
+"""Physics tests of the frictionless normal solver (solver/normal/normcg.py, docs/theory.md §4, §7.1).
 
 Scene of the seed paper (docs/theory.md §1, §7.1): rigid-ish steel sphere R = 40 mm on rubber, E* = 5.79985 MPa,
 Fn = 21.19 N -> a = 4.7857 mm, d = 0.572572 mm, p0 = 0.441756 MPa. Grids cover [-1.25 a, 1.25 a]^2 with

@@ -6,7 +6,7 @@ from rollcontact.bem import ContactEdgeError, Grid, HalfSpaceOperator, InputErro
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 from rollcontact.solver.normal.normcg import solve_normal
 from rollcontact.solver.rolling.profiles import ArrayProfile, FunctionProfile, QuadricProfile
-from rollcontact.solver.rolling.stepping import StepParams, build_path, run_path
+from rollcontact.solver.rolling.stepping import build_path, run_path
 from rollcontact.solver.tangential.shift import solve_tangential
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
