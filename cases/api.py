@@ -10,7 +10,7 @@ function here (cases.cli.main says how a command is added).
     rollcontact.sweep(scene, {"load.ft": [0.2, 0.4], "motion.angle": [0, 90]}, "results/sweep")
     rollcontact.limit_search(scene, {"motion.w": [0.23]}, "results/limits")
     rollcontact.limits(w=0.23, ft=0.46)                     # the closed forms (seed Eqs. 12-21)
-    rollcontact.creep_curve("cases/creep_steady.toml", of="xi")
+    rollcontact.creep_curve("cases/creep_steady.toml", of="xi", fidelity=["bem", "fastsim"])   # models side by side
 
     command                 function
     run [SCENE]             load_scene + run (default_output without -o)
@@ -246,17 +246,21 @@ def compare(a, b, *, step=None, output=None, overwrite=False):
     return compare_targets(a, b, step=step, output=output, overwrite=overwrite)
 
 
-def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, overrides=None, output="creep", overwrite=False):
+def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, fidelity=None, overrides=None, output="creep",
+                overwrite=False):
     """The creep-force curve of a steady [rolling] scene (a Scene or a TOML file path; as `rollcontact creep-curve`):
     `points` creepages of `of` ('xi', 'eta' or 'phi') geometrically from 0.02 to `max_ratio` times the saturation
-    creepage, each solution the warm start of the next, written to output/<scene>_creep_<of>.csv, .png and .pdf (all
-    or none; overwrite: replace them). overrides: as in `load_scene`. Returns a cases.run.creep_curve.CreepCurve
-    (table, paths, seconds; `report()`)."""
+    creepage, on each model of `fidelity` ('bem', 'fastsim', 'fastrip', or a list drawn side by side; default the
+    scene's [solver] fidelity when it is one of them, else 'bem'; docs/creep_fidelity.md), written to
+    output/<scene>_creep_<of>.csv (<scene>_creep_<of>_<model>.csv for a fast model), .png and .pdf (all or none;
+    overwrite: replace them; output None: no files). overrides: as in `load_scene`. Returns a
+    cases.run.creep_curve.CreepCurve (tables, table, paths, seconds; `report()`)."""
     from rollcontact.cases.run.creep_curve import creep_curve_files
     scene = _as_scene(scene)
     if overrides:
         scene = scene.with_overrides(overrides)
-    return creep_curve_files(scene, of=of, points=points, max_ratio=max_ratio, output=output, overwrite=overwrite)
+    return creep_curve_files(scene, of=of, points=points, max_ratio=max_ratio, output=output, overwrite=overwrite,
+                             fidelity=fidelity)
 
 
 # ---------------------------------------------------------------------------- what the commands add to the API

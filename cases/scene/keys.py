@@ -14,6 +14,13 @@ from rollcontact.bem.errors import SceneError
 
 INF = math.inf
 
+#: The models a scene can ask for ([solver] fidelity).
+FIDELITIES = ("bem", "mdr", "fastsim", "fastrip", "auto")
+#: The fast models of [rolling] scenes (solver.fastsim).
+FAST_FIDELITIES = ("fastsim", "fastrip")
+#: [solver] accuracy when fidelity = "auto" leaves it out.
+DEFAULT_ACCURACY = 0.02
+
 
 def _spec(default, lo=None, hi=None, *, lo_open=False, hi_open=False, choices=None, unit="", doc=""):
     """Field with its allowed range kept in the metadata, so validation and docs share one table."""
@@ -198,7 +205,20 @@ class GridSpec:
 class SolverSpec:
     tol: float = _spec(1e-8, 0, 1e-2, lo_open=True, doc="relative tolerance of the contact solvers")
     max_iter: int = _spec(500, 1, 1000000, doc="iteration budget per solve")
-    fidelity: str = _spec("bem", choices=("bem", "mdr"), doc="3D boundary elements or the 1D MDR model")
+    fidelity: str = _spec("bem", choices=FIDELITIES,
+                          doc="the model: 'bem' 3D boundary elements (Kalker's exact theory); 'mdr' the 1D MDR model "
+                              "(shakedown scenes); 'fastsim', 'fastrip' Kalker's simplified theory and FaStrip "
+                              "([rolling] scenes, docs/creep_fidelity.md); 'auto' the cheapest model whose measured "
+                              "error is within solver.accuracy")
+    accuracy: float | None = _spec(None, 0, 1, lo_open=True, hi_open=True,
+                                   doc="with fidelity = 'auto': the relative error allowed, of the tangential forces "
+                                       "([rolling]) or of u_sd (shakedown scenes), against the exact 3D model "
+                                       f"(default {DEFAULT_ACCURACY} with 'auto')")
+    traction_bound: str | None = _spec(None, choices=("scene", "ellipsoid", "parabolic"),
+                                       doc="traction bound mu p of fidelity 'fastsim' / 'fastrip': 'scene' (the "
+                                           "default) the pressure of the scene's normal problem; 'ellipsoid' Hertz's "
+                                           "semi-ellipsoid, 'parabolic' Kalker's 1982 parabola (FASTSIM only) over "
+                                           "the Hertz contact ellipse")
     threads: int = _spec(1, 1, 256, doc="FFTW threads")
     coupling: str = _spec("auto", choices=("auto", "on", "off"), doc="normal-tangential coupling")
     shakedown_tol: float = _spec(1e-4, 0, 1, lo_open=True, doc="per-period increment |dU|/U0 taken as shakedown")

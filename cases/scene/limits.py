@@ -95,8 +95,8 @@ class SceneLimits:
         return min(max(RESOLUTION_PER_RADIUS, RESOLUTION_PER_ANNULUS / annulus), MAX_RESOLUTION_PER_RADIUS)
 
     def _check_resolution(self):
-        """Each Hertz semi-axis spans at least MIN_ELEMENTS_PER_RADIUS elements (BEM only: MDR has no grid)."""
-        if self.solver.fidelity != "bem":
+        """Each Hertz semi-axis spans at least MIN_ELEMENTS_PER_RADIUS elements (every model on a grid: not the MDR)."""
+        if self.solver.fidelity == "mdr":
             return
         (sx, sy), (dx, dy) = self.semi_axes, self.spacing
         key_y = "dy" if self.grid.dy is not None else "dx"

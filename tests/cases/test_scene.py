@@ -56,7 +56,7 @@ def test_a_minimal_file_takes_neutral_defaults(tmp_path):
     ("motion.dW=-0.2", r"\[motion\] dW = -0.2 mm: allowed range"),
     ("motion.periods=-1", r"\[motion\] periods = -1: allowed range"),
     ("load.bogus=1", r"\[load\] unknown key\(s\) \['bogus'\]"),
-    ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr'\]"),
+    ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr', 'fastsim', 'fastrip', 'auto'\]"),
     ("materials.nu2=0.7", r"\[materials\] nu2 = 0.7: allowed range"),
     ("load.Fn=\"heavy\"", r"\[load\] Fn = 'heavy': expected a number in N"),
     ("load.ft=1.5", r"\[load\] ft = 1.5: allowed range is \[0, 1\]"),
