@@ -10,7 +10,7 @@ function here (cases.cli.main says how a command is added).
     rollcontact.sweep(scene, {"load.ft": [0.2, 0.4], "motion.angle": [0, 90]}, "results/sweep")
     rollcontact.limit_search(scene, {"motion.w": [0.23]}, "results/limits")
     rollcontact.limits(w=0.23, ft=0.46)                     # the closed forms (seed Eqs. 12-21)
-    rollcontact.creep_curve("cases/creep_steady.toml", of="xi")
+    rollcontact.creep_curve("cases/creep_steady.toml", of="xi", fidelity=["bem", "fastsim"])   # models side by side
     rollcontact.import_contact("cattaneo.inp", "imported")   # a CONTACT deck as scenes and a report
 
     command                 function
@@ -168,7 +168,7 @@ def stresses(run, *, steps=None, depths=None, progress=False):
     first principal stress at `depths` (mm, increasing; default: 30 depths from 0 to 2 a, finer near the surface) for
     `steps` (stored steps, 'all', or None for the last stored one).
 
-    run: a run file (path), whose /subsurface they become (README, "HDF5 layout"; an earlier one is replaced), or a
+    run: a run file (path), whose /subsurface they become (docs/hdf5_schema.md; docs/user_guide.md, "HDF5 layout"; an earlier one is replaced), or a
     RunResult: of a file, added to that file (and its `subsurface` updated), or held in memory only, computed and
     kept in memory. Returns them (cases.results.subsurface.Subsurface: name -> (steps, nz, ny, nx) MPa arrays, with
     `z`, `steps`, `units`; `report()` is the line the command prints)."""
@@ -248,17 +248,21 @@ def compare(a, b, *, step=None, output=None, overwrite=False):
     return compare_targets(a, b, step=step, output=output, overwrite=overwrite)
 
 
-def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, overrides=None, output="creep", overwrite=False):
+def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, fidelity=None, overrides=None, output="results/creep",
+                overwrite=False):
     """The creep-force curve of a steady [rolling] scene (a Scene or a TOML file path; as `rollcontact creep-curve`):
     `points` creepages of `of` ('xi', 'eta' or 'phi') geometrically from 0.02 to `max_ratio` times the saturation
-    creepage, each solution the warm start of the next, written to output/<scene>_creep_<of>.csv, .png and .pdf (all
-    or none; overwrite: replace them). overrides: as in `load_scene`. Returns a cases.run.creep_curve.CreepCurve
-    (table, paths, seconds; `report()`)."""
+    creepage, on each model of `fidelity` ('bem', 'fastsim', 'fastrip', or a list drawn side by side; default the
+    scene's [solver] fidelity when it is one of them, else 'bem'; docs/creep_fidelity.md), written to
+    output/<scene>_creep_<of>.csv (<scene>_creep_<of>_<model>.csv for a fast model), .png and .pdf (all or none;
+    overwrite: replace them; output None: no files). overrides: as in `load_scene`. Returns a
+    cases.run.creep_curve.CreepCurve (tables, table, paths, seconds; `report()`)."""
     from rollcontact.cases.run.creep_curve import creep_curve_files
     scene = _as_scene(scene)
     if overrides:
         scene = scene.with_overrides(overrides)
-    return creep_curve_files(scene, of=of, points=points, max_ratio=max_ratio, output=output, overwrite=overwrite)
+    return creep_curve_files(scene, of=of, points=points, max_ratio=max_ratio, output=output, overwrite=overwrite,
+                             fidelity=fidelity)
 
 
 def import_contact(deck, output=None, *, overwrite=False):

@@ -1,7 +1,7 @@
 """rollcontact: quasi-static rolling contact with Coulomb friction on an elastic half-space (boundary elements,
 FFT). Units: mm, N, MPa, degrees.
 
-The Python API (every `rollcontact` command is a thin layer over one of these; see README, "Python API"):
+The Python API (every `rollcontact` command is a thin layer over one of these; see docs/python_api.md):
 
     load_scene(path=None, overrides=None)    a scene from a TOML file or the embedded default, with overrides
     run(scene, output=None, ...)             run it (BEM or the 1-D MDR model); a RunResult, HDF5 if output given
