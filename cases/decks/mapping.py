@@ -44,8 +44,11 @@ def map_digits(case: Case, d: Draft):
     """The digits that change the problem and have no counterpart (B, E, V, M2, C = 4, 9, gap weighting); the
     digits and values that only steer the reference program's solvers and output, listed as ignored."""
     dg, line = case.digits, case.digit_lines
-    needs = {1: "a compressible interfacial sheet (FLXZ)", 2: "a prescribed elliptic traction bound",
-             3: "a prescribed parabolic traction bound", 4: "the SDEC double half-ellipse",
+    needs = {1: "a compressible interfacial sheet (FLXZ)",
+             2: "a prescribed elliptic traction bound (rollcontact's solver.traction_bound = 'ellipsoid' applies to its "
+                "fast models only)",
+             3: "a prescribed parabolic traction bound (rollcontact's solver.traction_bound = 'parabolic' applies to its "
+                "fast models only)", 4: "the SDEC double half-ellipse",
              5: "the KPEC approximation of the normal problem", 6: "the ANALYN approximation of the normal problem"}
     if dg["B"] != 0:
         d.refuse(digit(case, "B"), dg["B"], f"needs {needs[dg['B']]}; rollcontact solves the full elastic normal "
@@ -99,16 +102,36 @@ def map_materials(case: Case, d: Draft):
 
 
 def map_material_model(case: Case, d: Draft):
-    """M = 0: elastic; M = 1: viscoelastic (`map_viscoelastic`). M = 2, 3, 5 (the simplified theories FASTSIM,
-    FaStrip) and M = 4 (an interfacial layer) are refused, with what each would need."""
+    """M = 0: elastic; M = 1: viscoelastic (`map_viscoelastic`); M = 2, 3, 5-7: the reference program's simplified
+    theories (`map_fast_model`); M = 4 (an interfacial layer) is refused, with what it would need."""
     m = case.effective.get("M", case.digits["M"])
-    needs = {2: "the simplified theory (FASTSIM) with one flexibility FLX", 3: "the simplified theory (FASTSIM)",
-             4: "an interfacial layer with plasticity (GG3, LAYTHK, TAU_C0, K_TAU)", 5: "the FaStrip method",
-             6: "the original FaStrip method", 7: "FaStrip with its full sliding correction"}
     if m == 1:
         map_viscoelastic(case, d)
-    elif m != 0:
-        d.refuse(digit(case, "M"), m, f"needs {needs[m]}", case.digit_lines["M"])
+    elif m in (2, 3, 5, 6, 7):
+        map_fast_model(case, d, m)
+    elif m == 4:
+        d.refuse(digit(case, "M"), m, "needs an interfacial layer with plasticity (GG3, LAYTHK, TAU_C0, K_TAU)",
+                 case.digit_lines["M"])
+
+
+def map_fast_model(case: Case, d: Draft, m: int):
+    """The reference program's simplified theories are other models than rollcontact's fast ones (solver.fidelity
+    'fastsim': Kalker's FASTSIM with one flexibility weighted by the creepages; 'fastrip': its FaStrip;
+    docs/creep_fidelity.md): its M = 2 takes a given flexibility FLX, M = 3 three blended flexibilities, M = 5-7 its
+    own FaStrip variants, each with the slope reduction K0_MF, ALFAMF, BETAMF. Posed with rollcontact's models they
+    would run with another meaning, so they are refused, naming the model rollcontact has instead."""
+    flx = case.value("FLX")
+    what = {2: (f"FASTSIM with the given flexibility FLX = {flx:.6g} mm^3/N" if flx is not None else "", "fastsim"),
+            3: ("Modified FASTSIM with three blended flexibilities", "fastsim"),
+            5: ("Modified FaStrip", "fastrip"), 6: ("original FaStrip (Sichani)", "fastrip"),
+            7: ("FaStrip with its full sliding correction", "fastrip")}[m]
+    reduction = ""
+    if case.value("K0_MF") is not None and (case.value("K0_MF"), case.value("ALFAMF")) != (1.0, 1.0):
+        reduction = (f" and the slope reduction K0_MF = {case.value('K0_MF'):.6g}, ALFAMF = "
+                     f"{case.value('ALFAMF'):.6g}, BETAMF = {case.value('BETAMF'):.6g}")
+    d.refuse(digit(case, "M"), m, f"needs the reference program's {what[0]}{reduction}; rollcontact's "
+                                  f"solver.fidelity = '{what[1]}' is another variant (docs/creep_fidelity.md): set it "
+                                  "by hand to compare", case.digit_lines["M"])
 
 
 def map_viscoelastic(case: Case, d: Draft):

@@ -130,7 +130,8 @@ FRICTION = ("  0.30   0.30                      FSTAT, FKIN", "  0.2 0.1 100.0 0
 @pytest.mark.parametrize("changes, name, needs", [
     ([("  203100", "  203000")], "control digit N (NORM) = 0 (line 6)", "prescribed approach"),
     ([("  022020  ", "  022320  "), ("82000.     POISS", "82000.\n 1.0 1.0 1.0    POISS")],
-     "control digit M (MATER) = 3 (line 7)", "simplified theory"),
+     "control digit M (MATER) = 3 (line 7)", "three blended flexibilities; rollcontact's solver.fidelity = 'fastsim' is "
+                                             "another variant"),
     ([("  203100", "  223100"), HERTZIAN], "control digit B (BOUND) = 2 (line 6)", "elliptic traction bound"),
     ([("  022020  ", "  422020  "), FRICTION], "control digit L (FRCLAW) = 4 (line 7)", "exponential law"),
     ([("   1   1   ", "   1   2   "), ("     B(1..6): h", "\n  -9 9 -9 9 0 0   PL(1..6)\n% B(1..6): h")],
