@@ -1,5 +1,5 @@
-"""Command line: `rollcontact run | limits | sweep | limit-search | plot | compare | stresses | creep-curve` (see the
-README walkthrough).
+"""Command line: `rollcontact run | limits | sweep | limit-search | plot | compare | stresses | creep-curve |
+import-contact` (see the README walkthrough).
 
 Every command is a thin layer over one function of the Python API (rollcontact.cases.api, `import rollcontact`): it
 parses its arguments, calls the API, and prints what the API returns (a result's `report()`); the modules of this
@@ -147,6 +147,7 @@ def build_parser() -> argparse.ArgumentParser:
     from rollcontact.cases.cli import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
     from rollcontact.cases.cli import stresses_cmd; stresses_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import creep_cmd; creep_cmd.register(sub)  # noqa: E702
+    from rollcontact.cases.cli import import_cmd; import_cmd.register(sub)  # noqa: E702
     return parser
 
 
