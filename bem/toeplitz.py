@@ -1,4 +1,4 @@
-"""Surface operators given by their Toeplitz kernels, applied by zero-padded FFT (theory.md §3).
+"""Surface operators given by their Toeplitz kernels, applied by zero-padded FFT (docs/theory.md §3).
 
 `HalfSpaceOperator` builds the elastic influence coefficients itself and uses their symmetries (even zz, xx, yy; odd
 xy: real spectra). `ToeplitzOperator` takes the kernels as arrays instead, with no symmetry assumed: e.g. the
@@ -10,7 +10,7 @@ plans.
 Kernels: a dict component -> array of shape (2 ny - 1, 2 nx - 1), entry [oy + ny - 1, ox + nx - 1] the displacement
 (mm) at offset (ox dx, oy dy) (target minus source) from a unit traction (1 MPa) on an element; components 'zz', 'xx',
 'yy', 'xy' (= 'yx'), and for normal-tangential coupling 'xz', 'yz' (u_x, u_y from p; u_z from tau is zx = -xz,
-zy = -yz, as for the elastic kernels, theory.md §2.2). Units: mm, MPa.
+zy = -yz, as for the elastic kernels, docs/theory.md §2.2). Units: mm, MPa.
 """
 import numpy as np
 

@@ -11,7 +11,7 @@
 2. The sweep of wheelrail.y over 0-10 mm in 0.5 mm steps (21 runs) on 2 worker processes, then its figures
    (`rollcontact sweep ... --jobs 2` and `rollcontact plot`, as a user runs them): wall time of each command, the CPU
    time of the runs (their summaries' cpu_time) and of each command's own process.
-With --contact BIN (the reference program CONTACT built for comparison, e.g. /work/contact-build/bin/contact_linux64)
+With --contact BIN (the reference program CONTACT built for comparison, e.g. path/to/contact_linux64)
 the same cases are run by it too (one deck per measurement, OMP_NUM_THREADS=1) as the peer: its CPU time (user + sys
 of the child process). --quick: 3 repeats and a sweep of 5 positions. Results printed and written to DIR/speed.json
 (default results/wheelrail_speed/), with the machine's load average.

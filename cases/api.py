@@ -10,7 +10,8 @@ function here (cases.cli.main says how a command is added).
     rollcontact.sweep(scene, {"load.ft": [0.2, 0.4], "motion.angle": [0, 90]}, "results/sweep")
     rollcontact.limit_search(scene, {"motion.w": [0.23]}, "results/limits")
     rollcontact.limits(w=0.23, ft=0.46)                     # the closed forms (seed Eqs. 12-21)
-    rollcontact.creep_curve("cases/creep_steady.toml", of="xi")
+    rollcontact.creep_curve("cases/creep_steady.toml", of="xi", fidelity=["bem", "fastsim"])   # models side by side
+    rollcontact.import_contact("cattaneo.inp", "imported")   # a CONTACT deck as scenes and a report
 
     command                 function
     run [SCENE]             load_scene + run (default_output without -o)
@@ -20,6 +21,7 @@ function here (cases.cli.main says how a command is added).
     plot, compare           plot, compare
     stresses                stresses
     creep-curve             creep_curve
+    import-contact          import_contact
 
 Units: mm, N, MPa, degrees; dimensionless f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9). Errors are the
 commands' own messages, naming these functions' arguments (`output`, `overrides`, `overwrite=True`) where a command
@@ -40,8 +42,8 @@ from rollcontact.cases.results.outputs import check_output
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.scene.scene import Scene, default_scene
 
-__all__ = ["load_scene", "run", "restart", "read_run", "stresses", "sweep", "limit_search", "limits", "plot",
-           "compare", "creep_curve", "default_output", "RunResult", "Scene", "RollcontactError", "InputError",
+__all__ = ["load_scene", "run", "restart", "read_run", "stresses", "sweep", "limit_search", "import_contact", "limits",
+           "plot", "compare", "creep_curve", "default_output", "RunResult", "Scene", "RollcontactError", "InputError",
            "SceneError", "ConvergenceError", "OutputExistsError", "OutputInUseError", "OutputWriteError",
            "RunInterrupted"]
 
@@ -166,7 +168,7 @@ def stresses(run, *, steps=None, depths=None, progress=False):
     first principal stress at `depths` (mm, increasing; default: 30 depths from 0 to 2 a, finer near the surface) for
     `steps` (stored steps, 'all', or None for the last stored one).
 
-    run: a run file (path), whose /subsurface they become (README, "HDF5 layout"; an earlier one is replaced), or a
+    run: a run file (path), whose /subsurface they become (docs/hdf5_schema.md; docs/user_guide.md, "HDF5 layout"; an earlier one is replaced), or a
     RunResult: of a file, added to that file (and its `subsurface` updated), or held in memory only, computed and
     kept in memory. Returns them (cases.results.subsurface.Subsurface: name -> (steps, nz, ny, nx) MPa arrays, with
     `z`, `steps`, `units`; `report()` is the line the command prints)."""
@@ -246,17 +248,36 @@ def compare(a, b, *, step=None, output=None, overwrite=False):
     return compare_targets(a, b, step=step, output=output, overwrite=overwrite)
 
 
-def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, overrides=None, output="creep", overwrite=False):
+def creep_curve(scene, *, of="xi", points=20, max_ratio=4.0, fidelity=None, overrides=None, output="results/creep",
+                overwrite=False):
     """The creep-force curve of a steady [rolling] scene (a Scene or a TOML file path; as `rollcontact creep-curve`):
     `points` creepages of `of` ('xi', 'eta' or 'phi') geometrically from 0.02 to `max_ratio` times the saturation
-    creepage, each solution the warm start of the next, written to output/<scene>_creep_<of>.csv, .png and .pdf (all
-    or none; overwrite: replace them). overrides: as in `load_scene`. Returns a cases.run.creep_curve.CreepCurve
-    (table, paths, seconds; `report()`)."""
+    creepage, on each model of `fidelity` ('bem', 'fastsim', 'fastrip', or a list drawn side by side; default the
+    scene's [solver] fidelity when it is one of them, else 'bem'; docs/creep_fidelity.md), written to
+    output/<scene>_creep_<of>.csv (<scene>_creep_<of>_<model>.csv for a fast model), .png and .pdf (all or none;
+    overwrite: replace them; output None: no files). overrides: as in `load_scene`. Returns a
+    cases.run.creep_curve.CreepCurve (tables, table, paths, seconds; `report()`)."""
     from rollcontact.cases.run.creep_curve import creep_curve_files
     scene = _as_scene(scene)
     if overrides:
         scene = scene.with_overrides(overrides)
-    return creep_curve_files(scene, of=of, points=points, max_ratio=max_ratio, output=output, overwrite=overwrite)
+    return creep_curve_files(scene, of=of, points=points, max_ratio=max_ratio, output=output, overwrite=overwrite,
+                             fidelity=fidelity)
+
+
+def import_contact(deck, output=None, *, overwrite=False):
+    """Import a CONTACT input deck (`<experim>.inp`, or `.inp.gz`) as `rollcontact import-contact` does: every case
+    rollcontact can pose becomes a scene (a history of cases one scene run as one), the others are reported with
+    each digit or value rollcontact cannot pose (docs/contact_decks.md). Returns a DeckImport (`problems`, `status`
+    'yes' / 'partly' / 'no', `summary()`, `report()`, `scene_text(problem)`).
+
+    output: a folder for the scene files `<deck>_case<N>.toml`, the profiles they name, the report
+    `<deck>_import.md` and `<deck>_import.json`; None writes nothing. overwrite: replace files that exist (else
+    OutputExistsError, before anything is written). DeckError (an InputError) names the line and the field of a deck
+    that cannot be read.
+    """
+    from rollcontact.cases.decks.importer import import_contact as _import
+    return _import(deck, output, overwrite=overwrite)
 
 
 # ---------------------------------------------------------------------------- what the commands add to the API

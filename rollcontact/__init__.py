@@ -1,7 +1,7 @@
 """rollcontact: quasi-static rolling contact with Coulomb friction on an elastic half-space (boundary elements,
 FFT). Units: mm, N, MPa, degrees.
 
-The Python API (every `rollcontact` command is a thin layer over one of these; see README, "Python API"):
+The Python API (every `rollcontact` command is a thin layer over one of these; see docs/python_api.md):
 
     load_scene(path=None, overrides=None)    a scene from a TOML file or the embedded default, with overrides
     run(scene, output=None, ...)             run it (BEM or the 1-D MDR model); a RunResult, HDF5 if output given
@@ -14,6 +14,7 @@ The Python API (every `rollcontact` command is a thin layer over one of these; s
     plot(target, ...), compare(a, b, ...)    figures of a run, a sweep folder, two runs
     creep_curve(scene, of="xi", ...)         the creep-force curve of a [rolling] scene, as `rollcontact creep-curve`
     default_output(scene, ...)               where `rollcontact run` writes without -o
+    import_contact(deck, output=None)        a CONTACT input deck as scenes and a report, as `import-contact`
 
 Errors are RollcontactError: SceneError, InputError, OutputExistsError, OutputInUseError, OutputWriteError,
 ConvergenceError (rollcontact.cases.api).
@@ -23,8 +24,8 @@ Subpackages, in the order data flows: `rollcontact.cases` (scenes, runs, results
 (normal and tangential solvers, rolling, MDR model).
 """
 _API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "limits", "plot", "compare",
-        "creep_curve", "default_output", "RunResult", "Scene", "RollcontactError", "InputError", "SceneError",
-        "ConvergenceError", "OutputExistsError", "OutputInUseError", "OutputWriteError", "RunInterrupted")
+        "creep_curve", "default_output", "import_contact", "RunResult", "Scene", "RollcontactError", "InputError",
+        "SceneError", "ConvergenceError", "OutputExistsError", "OutputInUseError", "OutputWriteError", "RunInterrupted")
 __all__ = ["__version__", *_API]
 
 

@@ -1,4 +1,4 @@
-"""`rollcontact limits`: closed-form shakedown limits of oscillating rolling (solver.mdr.limits, theory §8).
+"""`rollcontact limits`: closed-form shakedown limits of oscillating rolling (solver.mdr.limits, docs/theory.md §8).
 
     rollcontact limits --w 0.23 [--angle 90 | --kappa K]     f_t,lim, u_lim and a table u_sd(f_t)
     rollcontact limits --ft 0.46 [--angle 90 | --kappa K]    w_lim (the largest amplitude with shakedown)
@@ -7,7 +7,7 @@
 Dimensionless inputs (seed Eq. 9): w = W/a, f_t = Ft/(mu Fn); outputs u = U/U0 with U0 = mu E* d/G*.
 Without --angle/--kappa the three reference kappas are shown side by side: parallel (1.0) and
 perpendicular (1.1), the seed's fits to CONTACT and experiments, and 1.5, the pure MDR (seed Eq. 12).
---angle uses mdr_limits.kappa_for_angle (sin^2 interpolation between 0 and 90 deg - an assumption).
+--angle uses solver.mdr.limits.kappa_for_angle (sin^2 interpolation between 0 and 90 deg - an assumption).
 
 Over `rollcontact.limits` (cases.closed_forms). `register(subparsers)` is called by cases/cli/main.py; `run_cli(argv)`
 is a standalone entry for tests. Bad values print a message naming the parameter and return exit code 2.
@@ -37,7 +37,7 @@ def register(subparsers) -> argparse.ArgumentParser:
     """Add the `limits` subcommand to an argparse subparsers object; handler set as `func`."""
     p = subparsers.add_parser(
         "limits", help="closed-form shakedown limits (MDR, seed Eqs. 12-19)",
-        description="Closed-form shakedown limits of oscillating rolling (seed Eqs. 12-19, theory.md §8). "
+        description="Closed-form shakedown limits of oscillating rolling (seed Eqs. 12-19, docs/theory.md §8). "
                     "w = W/a, f_t = Ft/(mu Fn), u = U/U0 with U0 = mu E* d/G*.")
     p.add_argument("--w", type=float, help="oscillation amplitude w = W/a (0..1)")
     p.add_argument("--ft", type=float, help="tangential load ratio f_t = Ft/(mu Fn) (0..1)")

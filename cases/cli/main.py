@@ -1,5 +1,5 @@
-"""Command line: `rollcontact run | limits | sweep | limit-search | plot | compare | stresses | creep-curve` (see the
-README walkthrough).
+"""Command line: `rollcontact run | limits | sweep | limit-search | plot | compare | stresses | creep-curve |
+import-contact` (see the README walkthrough).
 
 Every command is a thin layer over one function of the Python API (rollcontact.cases.api, `import rollcontact`): it
 parses its arguments, calls the API, and prints what the API returns (a result's `report()`); the modules of this
@@ -8,7 +8,7 @@ own arguments (`output`, `overrides`); inside a command (cases.arguments.command
 messages name the options (-o, --set).
 
 Adding a command (e.g. `import-contact`):
-  1. the work, in the module of its idea (e.g. a new subpackage cases/contact_deck/), raising RollcontactError
+  1. the work, in the module of its idea (for a new family, a new subpackage of cases/), raising RollcontactError
      subclasses whose messages name arguments through cases.arguments.arg (add the option's spelling to
      cases.arguments.OPTIONS);
   2. an API function in cases/api.py (or re-exported there), keyword arguments named as the options, returning a
@@ -143,10 +143,11 @@ def build_parser() -> argparse.ArgumentParser:
         limits_cmd = None
     if limits_cmd is not None:
         limits_cmd.register(sub)
-    from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)
+    from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
     from rollcontact.cases.cli import stresses_cmd; stresses_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import creep_cmd; creep_cmd.register(sub)  # noqa: E702
+    from rollcontact.cases.cli import import_cmd; import_cmd.register(sub)  # noqa: E702
     return parser
 
 
@@ -200,8 +201,8 @@ def main(argv=None) -> int:
 
 def console_main():
     """The `rollcontact` command (pyproject's entry point): `main`, then, after `run`, an exit that skips the
-    interpreter's teardown. Tearing down numba's compiler and the module graph took 0.23-0.35 s after a run
-    (measured 2026-11-25, 2-core AMD EPYC; benchmarks/startup.py), 10-15 % of a paper scene's process, with nothing
+    interpreter's teardown. Tearing down numba's compiler and the module graph takes 0.23-0.35 s after a run
+    (benchmarks/startup.py), 10-15 % of a paper scene's process, with nothing
     left to do: the run file is closed and renamed into place, stdout and stderr are flushed here, and `run` starts
     no other process or thread that needs a clean-up. The other commands (sweeps with their worker pools and Dask
     clients, plots) exit normally."""

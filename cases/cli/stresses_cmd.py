@@ -2,7 +2,7 @@
 
 Computes the stress tensor, von Mises, Tresca (maximum shear) and the first principal stress on the run's grid at
 the given depths (mm; default: 30 depths down to 2 a, finer near the surface) for stored steps (default: the last)
-from the stored tractions, and adds them to the run file as /subsurface (cases.results.subsurface; README, "HDF5
+from the stored tractions, and adds them to the run file as /subsurface (cases.results.subsurface; docs/hdf5_schema.md; "HDF5
 layout"), over `rollcontact.stresses`. Exit codes: 0 written, 2 bad input (missing file, step not stored, bad depths)
 or a file another process is writing (its lock), 1 a file that could not be written.
 """

@@ -1,9 +1,9 @@
-"""Shared pieces of the figures (`plots_run`, `plots_sweep`): reading a run for plotting, normalisations,
+"""Shared pieces of the figures (`run_figures`, `sweep_figures` and the others of `cases.plots`): reading a run for plotting, normalisations,
 colours, the seed's contact regions, centre-line sampling and saving.
 
-Normalisations (seed Eq. 9 with the consistent constants, theory.md §8.2 and pitfall P3):
+Normalisations (seed Eq. 9 with the consistent constants, docs/theory.md §8.2 and docs/theory.md P3):
 u = U/U0 with U0 = mu E* d/G* (U measured along Ft), f_t = Ft/(mu Fn), w = W/a, tractions over mu p0,
-pressures in MPa, coordinates in mm. Sign conventions as in theory.md §0: tau is the traction exerted by the
+pressures in MPa, coordinates in mm. Sign conventions as in docs/theory.md §0: tau is the traction exerted by the
 sphere on the substrate, u_x the displacement of the substrate surface relative to the sphere.
 
 Colours are fixed across every figure: parallel (rolling along Ft) blue, perpendicular red, other angles in
@@ -130,13 +130,17 @@ class RunView:
 
     @property
     def label(self) -> str:
-        s = "W ∥ Ft" if self.setting == "parallel" else "W ⊥ Ft" if self.setting == "perpendicular" \
-            else f"W at {self.angle:g}° to Ft"
+        """The rolling setting ('W ∥ Ft', 'W ⊥ Ft', 'W at 30° to Ft'), or 'no rolling' for w = 0."""
+        if self.w == 0:
+            s = "no rolling"
+        else:
+            s = "W ∥ Ft" if self.setting == "parallel" else "W ⊥ Ft" if self.setting == "perpendicular" \
+                else f"W at {self.angle:g}° to Ft"
         return s + (" (MDR 1-D)" if self.is_mdr else "")
 
     @property
     def title(self) -> str:
-        return f"{self.label}:  $f_t$ = {self.f_t:.3g}, $w$ = {self.w:.3g}  ({self.state})"
+        return f"{self.label}:  $f_t$ = {self.f_t:.3g}, $w$ = {self.w:.3g}  ({self.state.replace('_', ' ')})"
 
     # --- history ---------------------------------------------------------------------------------
     @property

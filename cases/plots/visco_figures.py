@@ -34,7 +34,7 @@ def pressure_figure(data, step: int | None = None):
     if cols.size:
         x0, x1 = cols[0] - 3, cols[-1] + 4
         y0, y1 = rows[0] - 3, rows[-1] + 4
-        x0, y0 = max(x0, 0), max(y0, 0)
+        x0, y0, x1, y1 = max(x0, 0), max(y0, 0), min(x1, len(x)), min(y1, len(y))    # 3 cells beyond, on the grid
     else:
         x0, x1, y0, y1 = 0, len(x), 0, len(y)
     dx = x[1] - x[0] if len(x) > 1 else 1.0

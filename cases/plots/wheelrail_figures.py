@@ -63,7 +63,7 @@ def plot_wheelrail_run(data, out_dir, stem, overwrite=False, notes=None):
         region = patch.fields["region"]
         bottom.contour(patch.x, patch.y, (region == 1).astype(float), levels=[0.5], colors="c", linewidths=0.9)
         fig.colorbar(im2, ax=bottom, label="|tau| / (mu p) (stick outlined)", shrink=0.8)
-        bottom.set_title(f"Fx {v['Fx']:.5g} N, Fy {v['Fy']:.5g} N; xi {v['xi']:.3g}, eta {v['eta']:.3g}, "
+        bottom.set_title(f"Fx {v['Fx']:.5g} N, Fy {v['Fy']:.5g} N\nxi {v['xi']:.3g}, eta {v['eta']:.3g}, "
                          f"phi {v['phi']:.3g} 1/mm", fontsize=9)
         for ax in (top, bottom):
             ax.set_xlabel("x (mm, along the track)")

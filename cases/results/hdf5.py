@@ -11,7 +11,8 @@ Layout (public contract; later versions add to it, never rename):
     /fields/<name>      shape (snapshots, ny, nx); /fields/step says which steps were stored (FIELD_UNITS)
     /summary            attrs: run summary (state, u_sd, ...); a value that does not apply (u_sd of a
                         ratcheting run, say) is NaN, or -1 for the counts in SUMMARY_COUNTS, as in a
-                        sweep's summary.h5 (files of version 0.1.0 before 2026-11-24 wrote the text 'none')
+                        sweep's summary.h5 (readers also accept the text 'none', which the first files of
+                        version 0.1.0 wrote)
     /patches/<k>/       a [wheelrail] run's contact patches k = 0, 1, ...: grid/x, grid/y and fields/<name>
                         (1, ny, nx) as at the root, in the patch's tangent plane; attrs: the patch's values
                         (cases.results.run_result.PATCH_UNITS)
@@ -157,7 +158,7 @@ def root_attrs(h5, data: RunResult):
 
 def write_summary_attrs(attrs, summary: dict, stored: dict | None = None):
     """The summary as attributes (NaN / -1 where a value does not apply); with `stored` (what the attributes hold
-    now), only what changed is written and what went is deleted: an attribute write costs 0.1-0.2 ms."""
+    already), only what changed is written and what went is deleted: an attribute write costs 0.1-0.2 ms."""
     for key in [k for k in (stored or {}) if k not in summary]:
         del attrs[key]
     for key, value in summary.items():

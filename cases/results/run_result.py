@@ -1,7 +1,7 @@
 """The result of one run, `RunResult`: what `rollcontact.run` returns, what a run file holds and what
 `rollcontact.read_run` reads back, as numpy arrays and plain Python values. Units: mm, N, MPa, s.
 
-The names below are the public contract of the HDF5 layout too (cases.results.hdf5; README, "HDF5 layout"):
+The names below are the public contract of the HDF5 layout too (cases.results.hdf5; docs/hdf5_schema.md):
 later versions add names, never rename them.
 """
 from __future__ import annotations
@@ -22,7 +22,7 @@ HISTORY_UNITS = {
     "wall_time": "s", "dissipation": "N mm",
 }
 #: dissipation: the frictional work of the step, -sum tau . s dA with the end-of-step traction tau and the step's
-#: slip s (solver.rolling.energy; theory.md §11.2).
+#: slip s (solver.rolling.energy; docs/theory.md §11.2).
 HISTORY_NAMES = tuple(HISTORY_UNITS)
 #: /history of a [rolling] transient run (cases.run.creep_transient) adds: M_z the moment on the rolling sphere
 #: about the contact centre (Kalker's convention), xi, eta the creepages of the step, cpu_time its process CPU time.
@@ -57,7 +57,14 @@ SUMMARY_UNITS = {
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
     "speed": "mm/s", "step_time": "s",
+    "fidelity_used": "-", "accuracy": "-", "predicted_error": "-", "fidelity_reason": "-", "traction_bound": "-",
+    "flexibility": "mm/MPa", "ellipse_a": "mm", "ellipse_b": "mm", "model_cpu_time": "s",
 }
+#: fidelity: the model that ran, fidelity_used the same (docs/creep_fidelity.md); with [solver] fidelity = "auto" also
+#: accuracy (requested), predicted_error (of the chosen model, by the measured map; 0 for the 3-D reference) and
+#: fidelity_reason. A fast model's run ([rolling], fastsim / fastrip): traction_bound, flexibility (Kalker's weighted
+#: L), ellipse_a, ellipse_b (the ellipse of its flexibilities) and model_cpu_time (the tangential model alone).
+
 #: Summary values of a scene with viscoelastic bodies (docs/viscoelastic.md): pressure_centroid_x (mm, at the last
 #: step, or the steady state's), rolling_resistance_moment = Fn pressure_centroid_x (N mm), the viscous work of the last
 #: complete period (oscillating scenes, N mm) or the power dissipated (steady rolling, and a transient's last step, W);

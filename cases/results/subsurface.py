@@ -1,6 +1,6 @@
 """The subsurface stresses of a run file (/subsurface), read back: whole, as sections, or as block maxima.
 
-Layout (README, "HDF5 layout"; names and units in cases.results.run_result.SUBSURFACE_UNITS; written by
+Layout (docs/hdf5_schema.md; names and units in cases.results.run_result.SUBSURFACE_UNITS; written by
 cases.run.stresses):
 
     /subsurface         attrs: nu (the substrate's Poisson ratio used), depths ('default' or 'given')

@@ -1,4 +1,4 @@
-"""The steady state of a [rolling] scene (solver.creep.steady; theory.md §7.3, §11.5): the normal problem on the
+"""The steady state of a [rolling] scene (solver.creep.steady; docs/theory.md §7.3, §11.5): the normal problem on the
 contact-fixed grid of the rolling frame (NormCG) and the steady tangential problem on the same grid (Kalker's
 Gauss-Seidel in traction differences), alternated for coupled materials (Kalker's K != 0, [solver] coupling) until
 neither the pressure (relative to its maximum) nor the traction (relative to mu p_max) changes by more than the

@@ -1,5 +1,6 @@
 """One run of a [rolling] mode = "transient" scene: rolled from an initial state on the grid of [rolling] grid
-(Scene.transient_grid), with the steady state of the same scene solved beside it (theory.md §6, §11.5).
+(Scene.transient_grid; FASTSIM always on the world-fixed grid), with the steady state of the same scene solved beside
+it (docs/theory.md §6, §11.5).
 
 Both grids have their x axis along [rolling] direction (the frame of the steady run), y over +-(b_r + margin), with
 a_r, b_r the Hertz contact's half-extents in the rolling frame (10 % allowance for an ellipse) and the scene's margin
@@ -18,7 +19,9 @@ for prescribed forces); /fields the snapshots of the stored steps on the run's g
 the default, stores the initial state, each further contact length 2a rolled and the last step; 'all', 'last',
 'none'), with their usual meaning (tau on the substrate, slip of the substrate relative to the sphere over the step,
 mm). The summary gives the last step in Kalker's convention (F_x, F_y, M_z on the sphere; xi, eta, phi) beside the
-steady state's (F_x_steady, ..., and xi_steady, eta_steady for prescribed forces). Units: mm, N, MPa.
+steady state's (F_x_steady, ..., and xi_steady, eta_steady for prescribed forces). On FASTSIM ([solver] fidelity
+'fastsim', or chosen by 'auto') the same grid and records come from cases.run.creep_fast.roll_fast (the normal
+problem at every step, FASTSIM's transient step), the steady state beside it from FASTSIM too. Units: mm, N, MPa.
 """
 from __future__ import annotations
 
@@ -29,6 +32,7 @@ import numpy as np
 
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
+from rollcontact.cases.run.creep_fast import fast_operator, fast_steady, roll_fast
 from rollcontact.cases.run.creep_steady import steady_state
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces, rolling_frame_gap
@@ -44,40 +48,51 @@ from rollcontact.solver.tangential import TangentialParams
 FIELDS = ("p", "u_z", "tau_x", "tau_y", "slip_x", "slip_y", "u_x", "u_y", "region")
 
 
-def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
-    """Roll the scene's [rolling] transient and return its RunResult (t_start: the run's perf_counter start);
-    solver errors propagate to the caller (cases.run.creep_run.run_creep)."""
+def run_transient(scene: Scene, t_start: float, *, progress=None, choice=None) -> RunResult:
+    """Roll the scene's [rolling] transient on its model (choice: cases.run.fidelity.FidelityChoice, default the
+    scene's fidelity; 'bem' or 'fastsim') and return its RunResult (t_start: the run's perf_counter start); solver
+    errors propagate to the caller (cases.run.creep_run.run_creep)."""
+    from rollcontact.cases.run.fidelity import choose_fidelity
+    choice = choose_fidelity(scene) if choice is None else choice
+    fast = choice.model == "fastsim"
     c_start = time.process_time()
     ro, tol = scene.rolling, scene.solver.tol
     a, b = scene.semi_axes
     step = ro.step if ro.step is not None else scene.spacing[0]
     distance = ro.distance if ro.distance is not None else 8.0 * scene.rolling_half_length
     n = rolling_steps(distance, step)
-    frame = scene.transient_grid
+    frame = "world" if fast else scene.transient_grid       # FASTSIM's transient steps the world-fixed grid
     grid = creep_grid(scene, travel=n * step) if frame == "world" else creep_grid(scene, trail=step)
-    roll = roll_world if frame == "world" else roll_moving
-    op = scene_operator(scene, grid)
+    op = fast_operator(scene, grid) if fast else scene_operator(scene, grid)
     x0, x1 = grid.x[0] - grid.dx / 2, grid.x[-1] + grid.dx / 2
     y0, y1 = grid.y[0] - grid.dy / 2, grid.y[-1] + grid.dy / 2
     world = f"{grid.nx} x {grid.ny} = {grid.size} elements over x = [{x0:.6g}, {x1:.6g}] x y = [{y0:.6g}, {y1:.6g}] mm"
     if progress:
+        model = "FASTSIM ('fastsim', no coupling)" if fast else f"coupling {'on' if op.coupled else 'off'}"
         progress(f"transient rolling on the {frame}-fixed grid {world} (x along the rolling direction "
-                 f"{ro.direction} deg), {n} steps of {step:.6g} mm from the {ro.initial or 'rest'} state, coupling "
-                 f"{'on' if op.coupled else 'off'}")
-    visco = steady_visco(scene, creep_grid(scene)) if scene.viscoelastic else None
-    steady_normal, steady, _, steady_creep = steady_state(scene, visco)
-    memory = scene_memory(scene, op)
-    params = StepParams(normal=NormalParams(tol=tol, max_iter=scene.solver.max_iter),
-                        tangential=TangentialParams(tol=tol, max_iter=scene.solver.max_iter),
-                        coupling_tol=max(tol, 1e-10))
+                 f"{ro.direction} deg), {n} steps of {step:.6g} mm from the {ro.initial or 'rest'} state, {model}")
     xi, eta, phi = scene.creepages
     forces = scene.prescribed_forces
+    visco, memory = None, None
+    if fast:
+        steady_fast = fast_steady(scene, "fastsim")
+        steady_normal, steady, steady_creep = steady_fast.normal, steady_fast.state, steady_fast.creepages
+        records = roll_fast(scene, op, distance=distance, step=step, initial=ro.initial or "rest")
+    else:
+        visco = steady_visco(scene, creep_grid(scene)) if scene.viscoelastic else None
+        steady_normal, steady, _, steady_creep = steady_state(scene, visco)
+        memory = scene_memory(scene, op)
+        params = StepParams(normal=NormalParams(tol=tol, max_iter=scene.solver.max_iter),
+                            tangential=TangentialParams(tol=tol, max_iter=scene.solver.max_iter),
+                            coupling_tol=max(tol, 1e-10))
+        roll = roll_world if frame == "world" else roll_moving
+        held = dict(memory=memory) if frame == "world" else {}      # viscoelastic scenes roll on the world grid
+        records = roll(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
+                       distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
+                       phi=phi, forces=forces, initial=ro.initial or "rest", params=params, **held)
     keep = _stored_steps(scene.output.fields, n, math.ceil(2.0 * scene.rolling_half_length / step - 1e-9))
     rows, fields, stored = [], {k: [] for k in FIELDS}, []
-    held = dict(memory=memory) if frame == "world" else {}      # viscoelastic scenes roll on the world grid
-    for rec in roll(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
-                    distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
-                    phi=phi, forces=forces, initial=ro.initial or "rest", params=params, **held):
+    for rec in records:
         rows.append(_row(rec, grid))
         if memory is not None:          # docs/viscoelastic.md; time: with cattaneo, its load at rest takes a step
             rows[-1].update(time=(rec.step + (ro.initial == "cattaneo")) * scene.step_time,
@@ -105,7 +120,10 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
                    rolling_grid=frame, grid_extent=world, nx=grid.nx, ny=grid.ny, elements=grid.size, steps=n + 1,
                    steps_planned=n + 1,
                    iterations=int(history["iterations"].sum()), wall_time=wall, cpu_time=cpu,
-                   time_per_step=float(history["wall_time"][1:].mean()), fidelity="bem")
+                   time_per_step=float(history["wall_time"][1:].mean()), **choice.summary())
+    if fast:
+        summary.update(traction_bound=steady_fast.bound, flexibility=float(last.tangential.flexibility),
+                       ellipse_a=steady_fast.ellipse[0], ellipse_b=steady_fast.ellipse[1])
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=scene.step_time)
     if visco is not None:

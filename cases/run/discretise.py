@@ -23,7 +23,7 @@ def scene_path(scene: Scene) -> LoadPath:
     ld = scene.load
     mu_fn = ld.mu * ld.Fn
     oscillation = None
-    if scene.oscillating:   # theory §11.2-11.3; the defaults leave the path as it was (normal_forces None)
+    if scene.oscillating:   # docs/theory.md §11.2-11.3; the defaults leave the path as it was (normal_forces None)
         oscillation = LoadOscillation(force_amplitude=tuple(ld.ft_amplitude * mu_fn * e_f),
                                       normal_amplitude=ld.fn_amplitude * ld.Fn, phase=ld.phase,
                                       cycles_per_period=ld.cycles_per_period,

@@ -1,7 +1,8 @@
 """Run one scene: the single entry point of the CLI, the sweeps and the Python API (`rollcontact.run`).
 
 `run_scene` runs the scene's model ([solver] fidelity: the BEM model, cases.run.bem_run, or the 1-D MDR model,
-cases.run.mdr_run) and, given a file, writes the result to HDF5. No result is lost and none is replaced unasked:
+cases.run.mdr_run; 'auto' chooses between them by the measured MDR map and says so on stderr, cases.run.fidelity;
+[rolling] scenes: cases.run.creep_run) and, given a file, writes the result to HDF5. No result is lost and none is replaced unasked:
 
 * one writer per file: the run holds the output's lock (cases.results.lock) from start to end; a second writer is
   refused at once, naming the holder;
@@ -38,6 +39,7 @@ from rollcontact.cases.results.outputs import free_name
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.results.subsurface import Subsurface
 from rollcontact.cases.run.checkpoint import Checkpoints
+from rollcontact.cases.run.fidelity import choose_fidelity
 from rollcontact.cases.scene.scene import Scene, stored_name
 
 
@@ -80,7 +82,9 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
             locks.append(OutputLock(target, label=f"{label} (its partial file {target.name})").acquire())
         for path in (out, target):
             remove_stale_temporaries(path)
-        stepped = scene.solver.fidelity == "bem" and not (scene.rolling_on or scene.wheelrail_on)
+        shakedown = not (scene.rolling_on or scene.wheelrail_on)
+        stepped = shakedown and (scene.solver.fidelity == "bem" or (scene.solver.fidelity == "auto"
+                                                                    and choose_fidelity(scene).model == "bem"))
         checkpoints = Checkpoints(target, attrs) if stepped else None
         stepwise = None
         if stresses:
@@ -125,11 +129,17 @@ def _run_model(scene, progress, restart, checkpoints, stresses) -> RunResult:
             raise InputError(f"{arg('restart')}: a [rolling] scene is solved in one run; there is nothing to restart")
         from rollcontact.cases.run.creep_run import run_creep
         return run_creep(scene, progress=progress)
-    if scene.solver.fidelity == "mdr":
+    choice = choose_fidelity(scene)
+    choice.announce()
+    if choice.model == "mdr":
         from rollcontact.cases.run.mdr_run import run_mdr
-        return run_mdr(scene, progress=progress)
-    from rollcontact.cases.run.bem_run import run_bem
-    return run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints, stresses=stresses)
+        result = run_mdr(scene, progress=progress)
+    else:
+        from rollcontact.cases.run.bem_run import run_bem
+        result = run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints, stresses=stresses)
+    if choice.automatic:
+        result.summary.update(choice.summary())
+    return result
 
 
 def _complete_stresses(stresses, result: RunResult, progress):

@@ -1,5 +1,5 @@
 """Subsurface stresses of a stored run: computed from the stored tractions (bem.subsurface) and added to the run file
-as /subsurface (layout: cases.results.subsurface; README, "HDF5 layout").
+as /subsurface (layout: cases.results.subsurface; docs/hdf5_schema.md).
 
 Default depths: DEFAULT_DEPTH_COUNT depths from 0 to DEFAULT_DEPTH_EXTENT * a (a: the Hertz contact radius of the
 run's summary), z_k = extent a (k / (count - 1))^DEFAULT_DEPTH_GRADING: spacing 0.013 a under the surface, 0.06 a at

@@ -21,7 +21,7 @@ SIDEWAYS_REPORTED = 1e-9
 
 
 def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:
-    """Run summary: normalisations of seed Eq. 9 with the consistent constants (theory §8.2, P3)."""
+    """Run summary: normalisations of seed Eq. 9 with the consistent constants (docs/theory.md §8.2, P3)."""
     pair = scene.material_pair
     hertz = scene.normal_reference        # Hertz (sphere, ellipsoid's equivalent sphere) or the shape's MDR
     n_done = len(history["U_x"])
@@ -147,6 +147,17 @@ def format_summary(result: RunResult) -> str:
     return "\n".join(lines)
 
 
+def _creep_work(s: dict, h: dict) -> str:
+    """What the tangential model did: the exact solver's sweeps (steady) or products (last transient step), or the
+    fast model's one pass over the strips."""
+    model = s.get("fidelity_used", "bem")
+    if model in ("fastsim", "fastrip"):
+        bound = f", bound '{s['traction_bound']}'" if "traction_bound" in s else ""
+        return f"{'FASTSIM' if model == 'fastsim' else 'FaStrip'} (one pass over the strips{bound})"
+    return (f"{int(h['tangential_iterations'][-1])} "
+            f"{'sweeps' if s.get('mode') == 'steady' else 'products in the last step'}")
+
+
 def _format_creep(d: RunResult) -> str:
     """Short summary of a [rolling] run (cases.run.creep_run): Kalker's convention, forces on the rolling sphere."""
     s, h = d.summary, d.history
@@ -155,9 +166,7 @@ def _format_creep(d: RunResult) -> str:
     if d.status == "complete":
         lines.append(f"contact area {h['contact_area'][-1]:.5g} mm^2 (stick {100 * s['stick_fraction']:.1f} %), "
                      f"max pressure {s['p0']:.5g} MPa, approach {h['approach'][-1]:.6g} mm, grid {s['nx']} x "
-                     f"{s['ny']}, {int(h['tangential_iterations'][-1])} "
-                     f"{'sweeps' if s.get('mode') == 'steady' else 'products in the last step'}, wall time "
-                     f"{d.wall_time:.2f} s")
+                     f"{s['ny']}, {_creep_work(s, h)}, wall time {d.wall_time:.2f} s")
         lines.append(f"forces on the rolling sphere (Kalker's convention, opposing the creepages): F_x = "
                      f"{s['F_x']:.6g} N, F_y = {s['F_y']:.6g} N, M_z = {s['M_z']:.6g} N mm; |F|/(mu Fn) = "
                      f"{math.hypot(s['F_x'], s['F_y']) / s['mu_Fn']:.4f}; linear theory F_x = {s['F_x_linear']:.6g} N, "

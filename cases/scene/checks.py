@@ -12,6 +12,7 @@ import numpy as np
 
 from rollcontact.bem.errors import SceneError
 from rollcontact.cases.scene.geometry import resolve_shape
+from rollcontact.cases.scene.keys import FAST_FIDELITIES
 from rollcontact.cases.scene.limits import MAX_STEPS
 
 
@@ -19,7 +20,7 @@ class SceneChecks:
     """Consistency checks of `cases.scene.Scene` (a mixin without fields)."""
 
     def _check_rolling(self, data: dict):
-        """A [rolling] scene has no [motion], no tangential load and the BEM model."""
+        """A [rolling] scene has no [motion], no tangential load, and a model of rolling with creepage."""
         if not self.rolling_on:
             if set(data.get("rolling", {})) - {"mode"}:
                 raise SceneError("[rolling] mode = 'none' with other [rolling] keys: set mode = 'steady' to roll "
@@ -56,9 +57,54 @@ class SceneChecks:
             if distance / ro.step > MAX_STEPS:
                 raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
                                  f"{MAX_STEPS} steps; use a larger step or a shorter distance")
-        if self.solver.fidelity != "bem":
-            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
-                             "boundary elements; allowed value is 'bem'")
+        self._check_fast_rolling()
+
+    def _check_fast_rolling(self):
+        """The models of a [rolling] scene: 'bem', the fast models of solver.fastsim (steady creepages; FaStrip steady
+        only), 'auto'; and the fast models' traction bound (docs/creep_fidelity.md)."""
+        so, ro = self.solver, self.rolling
+        if so.fidelity == "mdr":
+            raise SceneError("[solver] fidelity = 'mdr' with [rolling]: the 1-D MDR model has no creepage; allowed "
+                             "values are ['bem', 'fastsim', 'fastrip', 'auto']")
+        if so.fidelity in FAST_FIDELITIES:
+            if self.prescribed_forces is not None:
+                raise SceneError(f"[rolling] Fx, Fy with [solver] fidelity = {so.fidelity!r}: the fast models take "
+                                 "the creepages xi, eta; give those, or use fidelity = 'bem'")
+            if so.coupling == "on":
+                raise SceneError(f"[solver] coupling = 'on' with fidelity = {so.fidelity!r}: the fast models have no "
+                                 "normal-tangential coupling; use fidelity = 'bem', or coupling = 'auto' / 'off'")
+            if so.fidelity == "fastrip" and ro.mode == "transient":
+                raise SceneError("[solver] fidelity = 'fastrip' with [rolling] mode = 'transient': FaStrip (strip "
+                                 "theory) is a steady-state theory; use fidelity = 'fastsim' or 'bem', or mode = "
+                                 "'steady'")
+        if so.traction_bound in (None, "scene"):
+            return
+        if so.fidelity not in FAST_FIDELITIES:
+            raise SceneError(f"[solver] traction_bound = {so.traction_bound!r} with fidelity = {so.fidelity!r}: the "
+                             "bound is chosen for the fast models only; set fidelity = 'fastsim' or 'fastrip', or "
+                             "remove solver.traction_bound")
+        if so.fidelity == "fastrip" and so.traction_bound == "parabolic":
+            raise SceneError("[solver] traction_bound = 'parabolic' with fidelity = 'fastrip': the parabolic bound is "
+                             "FASTSIM's; FaStrip's strips carry the semi-ellipsoid ('ellipsoid' or 'scene')")
+        (sa, sb), turned = self.semi_axes, ro.direction % 180.0
+        if self.shape not in ("sphere", "ellipsoid") or (sa != sb and turned not in (0.0, 90.0)):
+            raise SceneError(f"[solver] traction_bound = {so.traction_bound!r}: Hertz's contact ellipse is known for a "
+                             "sphere or an ellipsoid rolling along one of its axes ([rolling] direction 0 or 90 deg); "
+                             "use traction_bound = 'scene' (the pressure of the normal problem)")
+
+    def _check_fidelity(self):
+        """The fast models are for [rolling] scenes; solver.accuracy goes with fidelity = 'auto'."""
+        so = self.solver
+        if so.fidelity in FAST_FIDELITIES and not self.rolling_on:
+            raise SceneError(f"[solver] fidelity = {so.fidelity!r}: a model of rolling with creepage, for scenes with a "
+                             "[rolling] section; allowed values here are ['bem', 'mdr', 'auto']")
+        if so.traction_bound is not None and not self.rolling_on:
+            raise SceneError(f"[solver] traction_bound = {so.traction_bound!r}: applies to the fast models of [rolling] "
+                             "scenes only; remove solver.traction_bound")
+        if so.accuracy is not None and so.fidelity != "auto":
+            raise SceneError(f"[solver] accuracy = {so.accuracy!r} with fidelity = {so.fidelity!r}: the accuracy is "
+                             "what fidelity = 'auto' chooses a model for; set fidelity = 'auto', or remove "
+                             "solver.accuracy")
 
     def _check_transient_grid(self):
         """[rolling] grid = 'contact' needs a step of whole elements (the grid moves by whole cells) and elastic
@@ -122,7 +168,8 @@ class SceneChecks:
                              f"(mm/s, > 0) that gives its steps their time; set {where.replace('[', '').replace('] ', '.')}")
         if self.solver.fidelity != "bem":
             raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with {', '.join(keys)} = 'sls': the MDR "
-                             "model has no viscoelastic bodies; allowed value is 'bem'")
+                             "model and the fast models (and the maps of 'auto') have no viscoelastic bodies; allowed "
+                             "value is 'bem'")
 
     def _check_finite(self):
         """The combined moduli and the contact size that the keys give are finite and positive: keys each within their
@@ -154,7 +201,7 @@ class SceneChecks:
         return ", ".join(f"{f.name} = {getattr(g, f.name)!r}" for f in fields(g) if getattr(g, f.name) is not None)
 
     def _check_oscillation(self):
-        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
+        """Refuse a load schedule that lifts the sphere off or slides (docs/theory.md §11.2-11.3), before any work.
 
         The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
         checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi

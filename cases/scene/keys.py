@@ -3,7 +3,8 @@ unit of each key, and the validation of one key against its field spec (used by 
 
 Units: mm, N, MPa, degrees (each field's `unit`; none for dimensionless keys). A value of the wrong type, out of
 its range or not among its choices raises `SceneError` naming the key, the value and the allowed range or values.
-The README's scene-key table lists the defaults.
+Each field also says which kinds of run it applies to (`modes`, default: its section's, SECTION_MODES; the kinds:
+MODES). docs/scene_reference.md is generated from these fields (docs/scripts/reference.py).
 """
 from __future__ import annotations
 
@@ -14,10 +15,53 @@ from rollcontact.bem.errors import SceneError
 
 INF = math.inf
 
+#: The models a scene can ask for ([solver] fidelity).
+FIDELITIES = ("bem", "mdr", "fastsim", "fastrip", "auto")
+#: The fast models of [rolling] scenes (solver.fastsim).
+FAST_FIDELITIES = ("fastsim", "fastrip")
+#: [solver] accuracy when fidelity = "auto" leaves it out.
+DEFAULT_ACCURACY = 0.02
 
-def _spec(default, lo=None, hi=None, *, lo_open=False, hi_open=False, choices=None, unit="", doc=""):
-    """Field with its allowed range kept in the metadata, so validation and docs share one table."""
-    meta = dict(lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open, choices=choices, unit=unit, doc=doc)
+
+#: The kinds of run a key can apply to (docs/scene_reference.md).
+MODES = {
+    "oscillating": "the sphere (or another profile) rolled back and forth under a tangential load, [load] and [motion] "
+                   "(the seed paper's scene), on the 3-D boundary elements",
+    "mdr": "the same with solver.fidelity = \"mdr\": the 1-D spring model of the MDR (docs/theory.md §8.2)",
+    "steady": "[rolling] mode = \"steady\": steady rolling with creepage and spin (docs/theory.md §11.5)",
+    "transient": "[rolling] mode = \"transient\": rolling on the world-fixed grid from an initial state",
+    "wheelrail": "[wheelrail]: a wheel on a rail with measured profiles, the contact patches found by search "
+                 "(docs/wheelrail.md)",
+}
+ALL_MODES = tuple(MODES)
+#: The modes of each section's keys, unless a key says otherwise (its `modes`); a section not listed: all.
+SECTION_MODES = {
+    "load": ("oscillating", "mdr"),
+    "motion": ("oscillating", "mdr"),
+    "rolling": ("steady", "transient"),
+    "wheelrail": ("wheelrail",),
+    "grid": ("oscillating", "steady", "transient"),
+    "solver": ("oscillating", "steady", "transient"),
+    "output": ("oscillating", "steady", "transient"),
+}
+#: One line on what each section holds (docs/scene_reference.md).
+SECTION_DOCS = {
+    "materials": "the elastic constants of the two bodies: body 1 the sphere (or profile), body 2 the substrate",
+    "geometry": "the undeformed profile of body 1 over the flat substrate (the only required section)",
+    "load": "the normal force, the friction coefficient and the tangential load path",
+    "motion": "the oscillating rolling: amplitude, direction relative to Ft, periods, step",
+    "rolling": "rolling on with creepage and spin, steady or transient (excludes [motion] and a tangential load)",
+    "wheelrail": "a wheel on a rail: the profiles, the track, the wheelset's position, load and motion",
+    "grid": "the boundary-element grid: element size and margin around the swept contact",
+    "solver": "tolerances, budgets, model fidelity, threads and the normal-tangential coupling",
+    "output": "which steps' surface fields the run file keeps",
+}
+
+
+def _spec(default, lo=None, hi=None, *, lo_open=False, hi_open=False, choices=None, unit="", doc="", modes=None):
+    """Field with its allowed range kept in the metadata, so validation and docs share one table; `modes`: the
+    kinds of run (MODES) it applies to, when not those of its section (SECTION_MODES)."""
+    meta = dict(lo=lo, hi=hi, lo_open=lo_open, hi_open=hi_open, choices=choices, unit=unit, doc=doc, modes=modes)
     if isinstance(default, list):
         return field(default_factory=lambda: list(default), metadata=meta)
     return field(default=default, metadata=meta)
@@ -74,16 +118,16 @@ class Geometry:
 
 @dataclass
 class Load:
-    Fn: float = _spec(21.19, 0, INF, lo_open=True, hi_open=True, unit="N", doc="normal force")
+    Fn: float = _spec(21.19, 0, INF, lo_open=True, hi_open=True, unit="N", doc="normal force", modes=ALL_MODES)
     # from 1e-6: the tangential problem scales with mu, but squared tractions underflow far below it (mu = 1e-200
     # gave u_stat 1.6 % off, silently)
-    mu: float = _spec(0.93, 1e-6, 10, doc="friction coefficient")
+    mu: float = _spec(0.93, 1e-6, 10, doc="friction coefficient", modes=ALL_MODES)
     ft: float | None = _spec(None, 0, 1, doc="tangential force / (mu Fn)")
     Ft: float | None = _spec(None, 0, INF, hi_open=True, unit="N", doc="tangential force")
     load_angle: float = _spec(0.0, -360, 360, unit="deg", doc="direction of Ft from the x axis")
     ramp_steps: int = _spec(1, 1, 10000, doc="increments from 0 to Ft")
     levels: list = _spec([], -1, 1, doc="further f_t levels after the ramp (unloading, reversal)")
-    # loads oscillating within each period (theory §11.2-11.3, cases.scene.scene._check_oscillation):
+    # loads oscillating within each period (docs/theory.md §11.2-11.3, cases.scene.scene.Scene._check_oscillation):
     # f_t(theta) = ft + ft_amplitude sin(m theta + phase), Fn(theta) = Fn (1 + fn_amplitude sin(m theta + phase))
     ft_amplitude: float = _spec(0.0, 0, 1, doc="amplitude of f_t around its mean ft, in units of mu Fn")
     fn_amplitude: float = _spec(0.0, 0, 1, hi_open=True,
@@ -109,7 +153,7 @@ class Motion:
 
 @dataclass
 class Rolling:
-    """Rolling on with prescribed creepages (solver.creep; theory.md §7.3, §11.5), in Kalker's convention: body 1
+    """Rolling on with prescribed creepages (solver.creep; docs/theory.md §7.3, §11.5), in Kalker's convention: body 1
     (the sphere) rolls along `direction` over body 2; xi, eta are the longitudinal and lateral rigid slip of body 1
     relative to body 2 per unit rolling distance, phi the spin (1/mm); the forces reported are those on body 1."""
     mode: str = _spec("none", choices=("none", "steady", "transient"),
@@ -127,20 +171,23 @@ class Rolling:
                              doc="prescribed lateral force on the sphere (with Fx)")
     distance: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                                    doc="transient: distance rolled from the initial state (default: 4 contact "
-                                       "lengths, 8 a; rounded up to whole steps)")
+                                       "lengths, 8 a; rounded up to whole steps)", modes=("transient",))
     # the upper bound (the contact's half-length a along the rolling direction) is checked by Scene._check_rolling
     step: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
                                doc="transient: rolling step (default: the element size dx; "
-                                   "at most the contact's half-length a along the rolling direction)")
+                                   "at most the contact's half-length a along the rolling direction)",
+                               modes=("transient",))
     grid: str | None = _spec(None, choices=("contact", "world"),
                              doc="transient: the grid the steps are solved on, 'contact' (moves with the contact, "
                                  "x from its centre; the previous step's tractions carried by the step, which must "
                                  "be a whole number of elements dx) or 'world' (fixed to the substrate, covering the "
                                  "distance rolled; any step); default 'contact' when the step is whole elements, "
-                                 "else 'world' (docs/creep_rolling.md)")
+                                 "else 'world' (docs/creep_rolling.md)",
+                             modes=("transient",))
     initial: str | None = _spec(None, choices=("rest", "cattaneo"),
                                 doc="transient: initial state, 'rest' (Fn alone, zero tangential force; the default) "
-                                    "or 'cattaneo' (then the tangential load of one step at rest)")
+                                    "or 'cattaneo' (then the tangential load of one step at rest)",
+                                modes=("transient",))
     speed: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm/s",
                                 doc="rolling speed V; transient: each step takes dt = step / V; steady: slip velocity "
                                     "= V x slip per unit rolled distance (default: none, time-independent)")
@@ -204,10 +251,26 @@ class GridSpec:
 class SolverSpec:
     tol: float = _spec(1e-8, 0, 1e-2, lo_open=True, doc="relative tolerance of the contact solvers")
     max_iter: int = _spec(500, 1, 1000000, doc="iteration budget per solve")
-    fidelity: str = _spec("bem", choices=("bem", "mdr"), doc="3D boundary elements or the 1D MDR model")
+    fidelity: str = _spec("bem", choices=FIDELITIES,
+                          doc="the model: 'bem' 3D boundary elements (Kalker's exact theory); 'mdr' the 1D MDR model "
+                              "(shakedown scenes); 'fastsim', 'fastrip' Kalker's simplified theory and FaStrip "
+                              "([rolling] scenes, docs/creep_fidelity.md); 'auto' the cheapest model whose measured "
+                              "error is within solver.accuracy",
+                          modes=("oscillating", "mdr", "steady", "transient", "wheelrail"))
+    accuracy: float | None = _spec(None, 0, 1, lo_open=True, hi_open=True,
+                                   doc="with fidelity = 'auto': the relative error allowed, of the tangential forces "
+                                       "([rolling]) or of u_sd (shakedown scenes), against the exact 3D model "
+                                       f"(default {DEFAULT_ACCURACY} with 'auto')",
+                                   modes=("oscillating", "steady", "transient"))
+    traction_bound: str | None = _spec(None, choices=("scene", "ellipsoid", "parabolic"),
+                                       doc="traction bound mu p of fidelity 'fastsim' / 'fastrip': 'scene' (the "
+                                           "default) the pressure of the scene's normal problem; 'ellipsoid' Hertz's "
+                                           "semi-ellipsoid, 'parabolic' Kalker's 1982 parabola (FASTSIM only) over "
+                                           "the Hertz contact ellipse", modes=("steady", "transient"))
     threads: int = _spec(1, 1, 256, doc="FFTW threads")
     coupling: str = _spec("auto", choices=("auto", "on", "off"), doc="normal-tangential coupling")
-    shakedown_tol: float = _spec(1e-4, 0, 1, lo_open=True, doc="per-period increment |dU|/U0 taken as shakedown")
+    shakedown_tol: float = _spec(1e-4, 0, 1, lo_open=True, doc="per-period increment |dU|/U0 taken as shakedown",
+                                 modes=("oscillating", "mdr"))
 
 
 @dataclass
@@ -279,3 +342,8 @@ def key_unit(key: str) -> str:
         if f.name == name:
             return f.metadata.get("unit") or "-"
     return "-"
+
+
+def key_modes(section: str, f) -> tuple:
+    """The kinds of run (MODES) the key `f` (a dataclass field) of `section` applies to."""
+    return f.metadata.get("modes") or SECTION_MODES.get(section, ALL_MODES)

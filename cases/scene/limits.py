@@ -19,7 +19,8 @@ RESOLUTION_PER_RADIUS = 12
 
 #: Elements across the slip annulus of a tangential load oscillating at constant Fn without rolling (motion.w = 0,
 #: load.fn_amplitude = 0), when grid.dx is left out: the annulus a [1 - (1 - A)^(1/3)] of an amplitude A = load.ft_amplitude (in mu Fn; the reverse-slip
-#: annulus of a swing of 2 A, Cattaneo-Mindlin, theory §11.2) spans at least this many elements, so that the work
+#: annulus of a swing of 2 A, Cattaneo-Mindlin, docs/theory.md §11.2) spans at least this many elements, so that the
+# work
 #: dissipated per cycle is within 1 % of Mindlin-Deresiewicz's (at a/12 the annulus of A = 0.3 is 1.3 elements
 #: and the work 4.4 % low; with 4 elements and more, a scan of a/dx = 24-42 at A = 0.3 stayed within 0.5 %).
 RESOLUTION_PER_ANNULUS = 4
@@ -95,8 +96,8 @@ class SceneLimits:
         return min(max(RESOLUTION_PER_RADIUS, RESOLUTION_PER_ANNULUS / annulus), MAX_RESOLUTION_PER_RADIUS)
 
     def _check_resolution(self):
-        """Each Hertz semi-axis spans at least MIN_ELEMENTS_PER_RADIUS elements (BEM only: MDR has no grid)."""
-        if self.solver.fidelity != "bem":
+        """Each Hertz semi-axis spans at least MIN_ELEMENTS_PER_RADIUS elements (every model on a grid: not the MDR)."""
+        if self.solver.fidelity == "mdr":
             return
         (sx, sy), (dx, dy) = self.semi_axes, self.spacing
         key_y = "dy" if self.grid.dy is not None else "dx"

@@ -17,12 +17,13 @@ Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contr
     [wheelrail] a wheel on its rail from two profile files, in place of [geometry], [motion], [rolling] and the loads of
                 [load] (cases.scene.wheelrail, docs/wheelrail.md)
     [grid]      dx, dy, margin
-    [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
+    [solver]    tol, max_iter, fidelity ("bem", "mdr", "fastsim", "fastrip" or "auto"), accuracy (with "auto"),
+                traction_bound (of "fastsim", "fastrip"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
 
 A key left out takes its default (the field specs of `cases.scene.keys`): the seed paper's materials, Fn, mu
 and rolling angle, but no tangential load and no motion; only [geometry] is required. So a scene file states
-only what its scene needs (the README's scene-key table lists the defaults). Unknown keys, wrong types and
+only what its scene needs (docs/scene_reference.md lists the defaults). Unknown keys, wrong types and
 out-of-range values raise `SceneError` naming the key, the value and the allowed range; so do, for a new
 run, a grid coarser than MIN_ELEMENTS_PER_RADIUS elements per Hertz semi-axis and a path of more than
 MAX_STEPS steps.
@@ -111,6 +112,7 @@ class Scene(SceneChecks, SceneLimits):
         if "wheelrail" in data or scene.wheelrail_on:
             return scene._wheelrail_checked(data, run_limits)
         scene._check_rolling(data)
+        scene._check_fidelity()
         scene._check_consistency()
         scene._check_visco()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
@@ -247,6 +249,11 @@ class Scene(SceneChecks, SceneLimits):
         step = self.rolling.step if self.rolling.step is not None else dx
         k = round(step / dx)
         return k >= 1 and abs(step / dx - k) <= 1e-9 * max(1.0, step / dx)
+
+    @property
+    def traction_bound(self) -> str:
+        """The fast models' traction bound ([solver] traction_bound; 'scene' when left out)."""
+        return self.solver.traction_bound or "scene"
 
     @staticmethod
     def assignments(overrides) -> list[str]:

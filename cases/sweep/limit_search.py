@@ -1,4 +1,4 @@
-"""Shakedown-limit search of the 3D model (`rollcontact limit-search`; seed Eqs. 18-19, theory.md §8.4).
+"""Shakedown-limit search of the 3D model (`rollcontact limit-search`; seed Eqs. 18-19, docs/theory.md §8.4).
 
 For each combination of the varied keys: bisection in f_t (or in w when load.ft is varied) on the state of the
 run, shakedown below, ratcheting above, to a stated tolerance, from a bracket around the kappa = 3/2 closed form.
@@ -30,7 +30,7 @@ from rollcontact.cases.sweep.workers import make_pool, raise_if_interrupted, com
 
 LIMIT_KAPPAS = (1.0, 1.1, 1.5)
 """Closed-form MDR limits reported beside each 3D bracket: seed fits parallel (1) and perpendicular (1.1),
-pure MDR (1.5); seed Eqs. 18-19 and theory.md §8.4."""
+pure MDR (1.5); seed Eqs. 18-19 and docs/theory.md §8.4."""
 
 LIMIT_COLUMNS = ("index", "searched", "lower", "upper", "midpoint", "width", "status", "probes",
                  "undecided", "mdr_kappa=1", "mdr_kappa=1.1", "mdr_kappa=1.5", "f_t", "w", "error")
@@ -224,7 +224,7 @@ def _limit_task(base_toml, base_name, overrides, values, searched, tol, runs_dir
     for k, label in kappas.items():
         row[label] = closed[k]
     # the 3-D limits of the paper's sphere lie on the kappa = 3/2 closed form at both settings and every alignment
-    # measured (README; docs/alignment.md), so the search starts there and widens outwards when it has to
+    # measured (docs/alignment.md), so the search starts there and widens outwards when it has to
     half = max(_FIRST_HALF_WIDTH, tol)
     lo_guess, hi_guess = closed[1.5] - half, closed[1.5] + half
     try:

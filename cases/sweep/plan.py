@@ -1,5 +1,5 @@
 """Sweep plans: the varied scene keys (`--vary`), their combinations as validated scenes, and run file names
-(cases.sweep.runner; theory.md §8).
+(cases.sweep.runner; docs/theory.md §8).
 
     --vary load.ft=0.1:0.9:9        range start:stop:count, both ends included (count >= 2; 1 gives start)
     --vary motion.w=0.1,0.23,0.4    comma list (values parsed as TOML: numbers, or strings such as bem,mdr)

@@ -1,4 +1,4 @@
-"""Parameter sweeps over scenes (seed Fig. 8; theory.md §8).
+"""Parameter sweeps over scenes (seed Fig. 8; docs/theory.md §8).
 
 A sweep is the Cartesian product of a few scene keys ("axes"), each given on the command line as
 `--vary section.key=start:stop:count` or `--vary section.key=v1,v2,...` (syntax: `cases.sweep.plan.parse_vary`).
@@ -54,7 +54,8 @@ from rollcontact.cases.results.lock import OutputLock, holder_of
 from rollcontact.cases.results.outputs import output_folder
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.cases.sweep.plan import PlannedRun, describe, parse_vary, plan_sweep
-from rollcontact.cases.sweep.table import CREEP_COLUMNS, VISCO_COLUMNS, WHEELRAIL_COLUMNS, write_summary
+from rollcontact.cases.sweep.table import (AUTO_COLUMNS, CREEP_COLUMNS, VISCO_COLUMNS, WHEELRAIL_COLUMNS,
+                                          write_summary)
 from rollcontact.cases.sweep.workers import completed, default_jobs, make_pool, raise_if_interrupted, require_dask
 
 #: seconds between two looks at a run that another process computes, and before saying whom a sweep waits for
@@ -180,6 +181,8 @@ def _row(run: PlannedRun, result: dict, outdir: Path) -> dict:
         row.update({k: s.get(k) for k in VISCO_COLUMNS})
     if "n_patches" in s:                               # a [wheelrail] scene (cases.sweep.table.WHEELRAIL_COLUMNS)
         row.update({k: s.get(k) for k in WHEELRAIL_COLUMNS})
+    if "predicted_error" in s:                         # solver.fidelity = "auto" (cases.sweep.table.AUTO_COLUMNS)
+        row.update({k: s.get(k) for k in AUTO_COLUMNS})
     try:
         row["angle"] = float(tomllib.loads(run.scene_toml)["motion"]["angle"])
     except (KeyError, tomllib.TOMLDecodeError):

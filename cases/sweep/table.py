@@ -43,6 +43,10 @@ VISCO_COLUMNS = ("pressure_centroid_x", "rolling_resistance_moment", "viscous_di
 #: above its nominal position (mm). The patches themselves are in the run files (/summary patch_* arrays).
 WHEELRAIL_COLUMNS = ("n_patches", "F_track_x", "F_track_y", "F_track_z", "z_ws")
 
+#: Further columns of a sweep whose scenes ask for solver.fidelity = "auto" (cases.run.fidelity), added only when its
+#: runs have them: the model each run chose and its predicted error (docs/creep_fidelity.md).
+AUTO_COLUMNS = ("fidelity_used", "predicted_error")
+
 #: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
 COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "U_perp": "mm", "dU_perp_per_period": "mm",
@@ -70,6 +74,8 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
         columns = SUMMARY_COLUMNS + WHEELRAIL_COLUMNS  # a sweep over a [wheelrail] scene
     if any(r.get("pressure_centroid_x") is not None for r in rows):
         columns = tuple(columns) + VISCO_COLUMNS       # viscoelastic bodies
+    if any(r.get("predicted_error") is not None for r in rows):
+        columns = tuple(columns) + AUTO_COLUMNS        # a sweep of solver.fidelity = "auto"
     header = list(keys) + [c for c in columns if c not in keys]
     text = io.StringIO(newline="")
     writer = csv.writer(text)

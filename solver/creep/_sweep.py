@@ -1,4 +1,4 @@
-"""Compiled element loops of the steady rolling Gauss-Seidel solver (`solver.creep.steady`; theory.md §11.5, §5.3).
+"""Compiled element loops of the steady rolling Gauss-Seidel solver (`solver.creep.steady`; docs/theory.md §11.5, §5.3).
 
 Fields are (2, ny, nx) float64 arrays on the contact-fixed grid, index [k, j, i] the component k (x, y) at the
 cell (x_i, y_j); body 1 rolls in +x, so the cell upstream of (j, i) is (j, i + 1). Kernels are the dense

@@ -1,8 +1,8 @@
-"""Steady rolling with creepage and spin, solved directly in contact-fixed coordinates (theory.md §11.5, §7.3).
+"""Steady rolling with creepage and spin, solved directly in contact-fixed coordinates (docs/theory.md §11.5, §7.3).
 
 Kalker's sign convention (see `solver.creep.kalker`): body 1 rolls in +x over body 2; xi, eta (dimensionless)
 and phi (1/mm) are the rigid slip of body 1 relative to body 2 per unit rolling distance; `traction` is the
-traction ON BODY 1 (MPa; the opposite of the project's substrate traction of theory.md §0) and the forces
+traction ON BODY 1 (MPa; the opposite of the project's substrate traction of docs/theory.md §0) and the forces
 Fx, Fy (N) and moment Mz (N mm, about the grid origin) are those on body 1. With u = A traction the displacement
 difference u1 - u2 (mm), the slip per unit rolling distance of body 1 relative to body 2 at cell I is
 
@@ -48,7 +48,7 @@ STALL_WINDOW = 20
 class SteadyParams:
     """Stop when no traction changes by more than tol * (largest bound, or largest traction without friction
     limit) in a sweep; at most max_sweeps sweeps, then ConvergenceError. omega: relaxation of the stick elements
-    (CONTACT's OMEGAH; 1 is plain Gauss-Seidel: over-relaxation measured 1.6-5 x slower, benchmarks/README)."""
+    (CONTACT's OMEGAH; 1 is plain Gauss-Seidel: over-relaxation measured 1.6-5 x slower, benchmarks/README.md)."""
     tol: float = 1e-6
     max_sweeps: int = 3000
     omega: float = 1.0
@@ -119,7 +119,7 @@ class SteadyRolling:
 
     def pressure_displacement(self, pressure):
         """u1 - u2 (mm) caused by the pressure through Kalker's K (zero when K = 0). The coupling coefficients
-        are those of the substrate traction convention (theory.md §2.2); u1 - u2 is minus that displacement."""
+        are those of the substrate traction convention (docs/theory.md §2.2); u1 - u2 is minus that displacement."""
         if self._coupling is None:
             return np.zeros((2,) + self.grid.shape)
         return -np.stack([_convolve(self._coupling[0], pressure), _convolve(self._coupling[1], pressure)])

@@ -1,11 +1,13 @@
-"""Transient rolling with creepage and spin on a world-fixed grid, from an initial state (theory.md §6, §11.5, §5.1).
+"""Transient rolling with creepage and spin on a world-fixed grid, from an initial state (docs/theory.md §6, §11.5,
+§5.1).
 
 The grid is fixed to body 2 (the substrate), its x axis along the rolling direction. Body 1's profile moves by
-`step` (mm) along x per step (the paper's Eq. 7, theory §6.1: h_k(x, y) = h(x - c_k, y), c_k = k step). In rolling,
+`step` (mm) along x per step (the paper's Eq. 7, docs/theory.md §6.1: h_k(x, y) = h(x - c_k, y), c_k = k step). In
+rolling,
 the surface material of both bodies that is in contact stays at the same world position while the contact passes
 over it (up to the creep slip itself, first order in the creepages), so the displacement difference u = u1 - u2 at a
 world-fixed element belongs to the same pair of material points at consecutive steps, and each step is Kalker's
-shift problem (theory §5.1) with the rigid slip of body 1 relative to body 2 over the step
+shift problem (docs/theory.md §5.1) with the rigid slip of body 1 relative to body 2 over the step
 
     step * (xi - phi (y - c_y), eta + phi (x - c_x + SPIN_OFFSET step))        (mm; c = (c_k, 0) the contact centre)
 
@@ -14,7 +16,7 @@ relative to body 2 per unit rolling distance, the spin about the moving contact 
 in `steady`, CONTACT's 1/6 dq). The tangential solver's slip is the substrate's relative to body 1, so this rigid
 slip enters with the opposite sign: as extra slip with the shift fixed at zero (prescribed creepages), or, with
 prescribed forces (Fx, Fy) on body 1, as the unknown rigid-shift increment dU of the force-controlled problem
-(theory §5.2: (xi, eta) = dU / step, the spin part still as extra slip). One step is
+(docs/theory.md §5.2: (xi, eta) = dU / step, the spin part still as extra slip). One step is
 `solver.rolling.coupled.solve_coupled_step`: normal then tangential problem, nested until both settle for coupled
 materials (the pressure's tangential displacement A^tz (p - p') enters the slip), the pressure warm-started from
 the previous one moved by whole cells (`stepping.shifted_field`), the contact checked to stay inside the grid.
@@ -35,7 +37,7 @@ element states and advances them (step 0 ends at t = 0; with `cattaneo` the tang
 step time, so step k ends at (k + 1) dt).
 
 Results in Kalker's convention (forces and moment on body 1; the moment about the contact centre), the solver
-results in the substrate convention of theory.md §0. Units: mm, N, MPa.
+results in the substrate convention of docs/theory.md §0. Units: mm, N, MPa.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""One step of normal + tangential contact for coupled materials (theory.md §6.2 step 5).
+"""One step of normal + tangential contact for coupled materials (docs/theory.md §6.2 step 5).
 
 For beta != 0 (dissimilar materials, `op.coupled` True) the pressure displaces the surface tangentially
 (A^tz) and the tractions displace it normally (A^zt). Panagiotopoulos' process alternates the two
@@ -12,7 +12,7 @@ contraction for |beta| mu well below 1 (Kalker 1990, §5; CONTACT user guide, "s
 For uncoupled materials (beta = 0 or below the operator's threshold) one normal and one tangential solve
 are exact ("Johnson's process") and no coupling product is formed.
 
-Units: mm, N, MPa. Signs as in theory.md §0.
+Units: mm, N, MPa. Signs as in docs/theory.md §0.
 """
 from dataclasses import replace
 
@@ -36,8 +36,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     Fn : normal force (N). F : (Fx, Fy) tangential force on the substrate (N), or None with `shift`.
     previous_pressure : (ny, nx) p' of the previous step (MPa), or None for zero (virgin contact).
     previous_traction : (2, ny, nx) tau' of the previous step (MPa).
-    mu : Coulomb friction coefficient (the bound is g = mu p). [Not in the issue's signature: the bound
-        needs it.]
+    mu : Coulomb friction coefficient (the bound is g = mu p).
     normal_params, tangential_params : the inner solvers' tolerances.
     coupling_tol : stop when max|p_k - p_{k-1}| <= coupling_tol max p_k and
         max|tau_k - tau_{k-1}| <= coupling_tol mu max p_k.

@@ -1,6 +1,6 @@
-"""Quasi-static time stepping of oscillating rolling on a world-fixed grid (theory.md §6).
+"""Quasi-static time stepping of oscillating rolling on a world-fixed grid (docs/theory.md §6).
 
-One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
+One step n, as in docs/theory.md §6.2 (Kalker 1990; CONTACT's nested iteration):
 
     1. h_n = the undeformed profile shifted to the current sphere centre c_n (seed Eq. 7, any direction);
     2. normal problem with Fn (constant, or the step's Fn of an oscillating load), warm-started from p_{n-1}
@@ -18,10 +18,10 @@ The path is prescribed: a loading phase (Fn alone, then the tangential force in 
 then any further force levels) followed by `periods` triangle-wave periods of the centre (loads that oscillate
 within each period: solver.rolling.schedule; the frictional work of each step: solver.rolling.energy),
 0 -> +W -> 0 -> -W -> 0, in steps of W/ceil(W/dW) along the rolling direction. Rolling is pure rolling of a
-rigid sphere: only the profile moves, there is no rigid creepage (theory §5.1 note v).
+rigid sphere: only the profile moves, there is no rigid creepage (docs/theory.md §5.1 note v).
 
 Units mm, N, MPa. U is the rigid shift of the sphere relative to the substrate far field, so that
-U.F > 0 under a steady force (theory §0).
+U.F > 0 under a steady force (docs/theory.md §0).
 """
 from __future__ import annotations
 
@@ -75,7 +75,8 @@ class LoadPath:
 def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), amplitude=0.0,
                max_step=0.2, periods=0, normal_force=None, oscillation: LoadOscillation | None = None,
                step_time=None) -> LoadPath:
-    """Loading phase then oscillation (theory §6.1), with loads that may oscillate within each period (§11.2-11.3).
+    """Loading phase then oscillation (docs/theory.md §6.1), with loads that may oscillate within each period
+    (docs/theory.md §11.2-11.3).
 
     force: final tangential force vector (N) of the ramp; levels: further force vectors (N), each reached
     in `ramp_steps` equal increments (unloading, reversal); amplitude W and max_step dW in mm.

@@ -9,7 +9,7 @@ problem), `_moves` (the step back onto the discs, the force restoration and the 
 in MPa, displacements and slips in mm. Nothing here allocates a grid-sized array; every kernel writes into buffers
 owned by the caller.
 
-Notation (theory.md §5): w = A(tau - tau') + extra slip (mm), dU the rigid-shift increment (mm),
+Notation (docs/theory.md §5): w = A(tau - tau') + extra slip (mm), dU the rigid-shift increment (mm),
 s = w - dU the slip of the step, n = tau/|tau| and t = (-n_y, n_x) in slip elements. `classify` stores
 n of the slip elements in a (2, ny, nx) buffer `nrm` that the kernels of the same iteration read (one
 square root per element and iteration instead of one per kernel); entries outside the slip area are not used.

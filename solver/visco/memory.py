@@ -11,7 +11,7 @@ work the viscous dashpots dissipated during it is integrated exactly (`sls` modu
 
 The history operator A_h,i of body i is a bem.HalfSpaceOperator of that body alone (with the history modulus against
 a rigid partner); one product of it per step and body (the traction of the step), its products of the states and of
-the previous traction are carried along linearly. Traction convention of theory.md §0 (p on the substrate, tau the
+the previous traction are carried along linearly. Traction convention of docs/theory.md §0 (p on the substrate, tau the
 sphere's traction on the substrate; each body's quadratic form is its own strain energy). Units: mm, MPa, N mm, s.
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Frictionless normal contact with a non-symmetric operator: the steady rolling of viscoelastic bodies (docs/theory.md
 §4.1, §12.3; docs/viscoelastic.md, "The steady normal problem").
 
-Problem (theory.md §4.1) on the contact-fixed grid, element area dA:
+Problem (docs/theory.md §4.1) on the contact-fixed grid, element area dA:
 
     e_I = h_I - d + u_I >= 0,   p_I >= 0,   p_I e_I = 0,   sum_I p_I dA = Fn,   u = K p (+ extra displacement),
 

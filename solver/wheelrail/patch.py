@@ -8,7 +8,7 @@ method on the splines of the profiles), so that the gap keeps the profiles' non-
 radius varying across the patch and the skew of a yawed wheel; the plane itself is the approximation ("planar
 contact"): the half-space solved on it ignores how the surfaces curve away from it.
 
-Creepages (Kalker's convention, theory.md §11.5; body 1 the wheel, body 2 the rail at rest): the wheel's material
+Creepages (Kalker's convention, docs/theory.md §11.5; body 1 the wheel, body 2 the rail at rest): the wheel's material
 point O_w at the patch's reference (its undeformed surface point O + t_wheel(0, 0) e_n: the rolling radius is the
 wheel's radius there) moves with v = V e_x + Omega x (O_w - C) (V the forward speed, Omega = omega a the wheelset's
 rotation about its axle a, C its centre); relative to the contact, which travels with the wheelset, the rail's

@@ -102,9 +102,24 @@ def _exact_steady(problem: PatchProblem, initial) -> SteadyResult:
                         params=SteadyParams(tol=max(p.tol, 1e-12), max_sweeps=max(p.max_iter, 100)))
 
 
+def _fast_steady(model: str) -> Callable:
+    """The patch solver of a fast model ("fastsim", "fastrip"; solver.fastsim, docs/theory.md §12.4) on the patch grid
+    with the patch's own pressure as the traction bound and the flexibilities of its equivalent ellipse."""
+    def solve(problem: PatchProblem, initial) -> SteadyResult:
+        from rollcontact.solver.fastsim import fast_patch
+        m = problem.materials
+        state = fast_patch(model, creepages=problem.creepages, mu=problem.mu, G=m.G, nu=m.nu, grid=problem.grid,
+                           pressure=problem.pressure).state
+        return SteadyResult(state.traction, state.slip, state.contact, state.stick, tuple(state.force),
+                            float(state.moment), sweeps=1, change=0.0, stick_slip=0.0, creepages=state.creepages)
+    return solve
+
+
 #: The tangential solver of a patch by [solver] fidelity: callable(PatchProblem, initial traction or None) ->
-#: SteadyResult (traction on the wheel, Kalker's convention). A faster model (FASTSIM) registers itself here.
-PATCH_SOLVERS: dict[str, Callable] = {"bem": _exact_steady}
+#: SteadyResult (traction on the wheel, Kalker's convention, moment about the grid origin): Kalker's exact steady
+#: theory, or a fast model (the normal problem and the contact search stay exact).
+PATCH_SOLVERS: dict[str, Callable] = {"bem": _exact_steady, "fastsim": _fast_steady("fastsim"),
+                                      "fastrip": _fast_steady("fastrip")}
 
 
 @dataclass

@@ -1,5 +1,5 @@
 """Transient rolling of a wheel's patches (docs/wheelrail.md, §4): each patch of the steady solution rolled on a
-world-fixed grid of its tangent plane from an initial state over a distance (solver.creep.world, theory.md §6,
+world-fixed grid of its tangent plane from an initial state over a distance (solver.creep.world, docs/theory.md §6,
 §11.5), with the normal force the steady vertical balance gave it and the creepages of its reference point.
 
 The world grid spans the patch's steady grid and, ahead of it along x, the distance rolled; the wheel's gap moves

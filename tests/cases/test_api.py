@@ -20,7 +20,7 @@ ROLLCONTACT = str(Path(sys.executable).with_name("rollcontact"))
 COARSE = {"grid.dx": 0.6, "grid.dy": 0.6, "motion.dW": 0.6, "motion.periods": 3}
 #: command -> the API function it calls
 COMMANDS = {"run": "run", "limits": "limits", "sweep": "sweep", "limit-search": "limit_search", "plot": "plot",
-            "compare": "compare", "stresses": "stresses", "creep-curve": "creep_curve"}
+            "compare": "compare", "stresses": "stresses", "creep-curve": "creep_curve", "import-contact": "import_contact"}
 
 
 @pytest.fixture(scope="module")

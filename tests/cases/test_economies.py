@@ -14,7 +14,7 @@ from rollcontact.cases.run.discretise import scene_grid, scene_path
 from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 
-SEED_ELEMENTS = (3050, 4200)     # seed: 3050-4200 elements for W = 1.2-3.4 mm at dx = 0.2 mm (P14)
+SEED_ELEMENTS = (3050, 4200)     # seed: 3050-4200 elements for W = 1.2-3.4 mm at dx = 0.2 mm (docs/theory.md P14)
 
 
 def naive_square(scene):

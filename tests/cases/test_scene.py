@@ -14,7 +14,7 @@ def test_default_scene_is_the_seed_table1_perpendicular_setting():
     assert s.geometry.R == 40.0 and s.load.Fn == 21.19 and s.load.mu == 0.93
     assert s.spacing == (0.2, 0.2)
     assert s.f_t == 0.46 and s.motion.w == 0.23 and s.motion.angle == 90.0
-    assert s.contact_radius == pytest.approx(4.7857, abs=1e-4)  # theory §7.1
+    assert s.contact_radius == pytest.approx(4.7857, abs=1e-4)  # docs/theory.md §7.1
     assert s.rolling_direction == pytest.approx((0.0, 1.0), abs=1e-15)
 
 
@@ -56,7 +56,7 @@ def test_a_minimal_file_takes_neutral_defaults(tmp_path):
     ("motion.dW=-0.2", r"\[motion\] dW = -0.2 mm: allowed range"),
     ("motion.periods=-1", r"\[motion\] periods = -1: allowed range"),
     ("load.bogus=1", r"\[load\] unknown key\(s\) \['bogus'\]"),
-    ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr'\]"),
+    ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr', 'fastsim', 'fastrip', 'auto'\]"),
     ("materials.nu2=0.7", r"\[materials\] nu2 = 0.7: allowed range"),
     ("load.Fn=\"heavy\"", r"\[load\] Fn = 'heavy': expected a number in N"),
     ("load.ft=1.5", r"\[load\] ft = 1.5: allowed range is \[0, 1\]"),
@@ -133,8 +133,8 @@ def test_a_sphere_becomes_an_ellipsoid_when_both_radii_are_given():
 @pytest.mark.parametrize("first, second", [("load.ft=0.3", "load.Ft=5"), ("motion.w=0.2", "motion.W=1.0"),
                                            ("geometry.Rx=20", "geometry.R=40")])
 def test_both_spellings_in_one_set_of_overrides_are_refused_naming_both(first, second):
-    """Within one command the two spellings of a quantity contradict each other (as in a scene file); the last one
-    used to win silently. Repeating the same key is an ordinary override (the last wins)."""
+    """Within one command the two spellings of a quantity contradict each other (as in a scene file): neither may win
+    silently. Repeating the same key is an ordinary override (the last wins)."""
     with pytest.raises(SceneError, match=rf"overrides '{first}' and overrides '{second}': give either"):
         default_scene().with_overrides([first, second])
     assert default_scene().with_overrides(["load.ft=0.3", "load.ft=0.4"]).f_t == 0.4
@@ -158,35 +158,8 @@ def test_unreadable_or_invalid_files_give_scene_errors(tmp_path):
         Scene.from_toml(f)
 
 
-def test_readme_scene_table_states_the_defaults_of_cases_scene():
-    """Every `key = value` in the README's defaults column is the dataclass default; every literal default
-    (not None, not derived) is stated there."""
-    import re
-    from dataclasses import fields as dc_fields
-    from pathlib import Path
-    from rollcontact.cases.scene.scene import SECTIONS
-    from rollcontact.cases.scene.overrides import parse_value as _parse_value
-    root = Path(__file__).resolve().parents[2]
-    # the [wheelrail] row is on its own page until the README's table takes it
-    readme = (root / "README.md").read_text() + (root / "docs" / "wheelrail.md").read_text()
-    rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `\[(\w+)\]` \|.*\| (.*) \|$", readme, re.M)}
-    assert set(rows) == set(SECTIONS)
-    for sec, klass in SECTIONS.items():
-        stated = {k: _parse_value(v) for k, v in re.findall(r"`(\w+) = ([^`]+)`", rows[sec])}
-        for f in dc_fields(klass):
-            default = f.default_factory() if callable(f.default_factory) else f.default
-            if f.name in ("ft", "w"):                     # None: neither ft nor Ft (w nor W) given, i.e. 0
-                assert default is None and stated[f.name] == 0
-            elif f.name in stated:
-                assert stated[f.name] == default, (sec, f.name, stated[f.name], default)
-            elif default is not None:
-                raise AssertionError(f"README scene table: [{sec}] {f.name} = {default!r} not stated")
-        assert set(stated) <= {f.name for f in dc_fields(klass)}, (sec, stated)
-
-
 def test_w_and_W_share_one_range():
-    """w = W/a was limited to [0, 1] while W = 10 mm (w = 2.09) ran: both are open above now (the step limit
-    bounds them)."""
+    """w = W/a is open above like W (W = 10 mm is w = 2.09 on the paper scene); the step limit bounds both."""
     s = default_scene().with_overrides(["motion.w=1.5"])
     assert s.amplitude == pytest.approx(1.5 * s.contact_radius)
     data = default_scene().to_dict()

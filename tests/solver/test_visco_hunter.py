@@ -71,6 +71,21 @@ def test_hunter_tends_to_hertz_with_the_relaxed_and_the_glassy_modulus():
     assert mid.resistance_coefficient > 20 * max(slow.resistance_coefficient, fast.resistance_coefficient)
 
 
+def test_hunter_root_is_the_same_from_a_neighbouring_start_where_the_solver_stalls_at_it():
+    """A lightly damped substrate (E_g / E_r = 1.2) at ell = 24.2 a_r, started from the solution at the neighbouring
+    speed (a sweep's continuation): the root-finder stops making progress at the root itself; the closed form is
+    accepted on its two conditions (both below 1e-10) and is the same root (c and w within 1e-9 a_r) as from the
+    default start, between the glassy and the relaxed Hertz half-widths, with the load P carried (1e-8)."""
+    p, r, er = 1.0, 40.0, 4.35
+    a_r = math.sqrt(2.0 * K * r * p / er)
+    near = hunter_cylinder(p, r, 1.2 * er, er, NU, 19.144819761699576 * a_r)
+    h = hunter_cylinder(p, r, 1.2 * er, er, NU, 24.244620170823282 * a_r, guess=(near.c, near.w))
+    ref = hunter_cylinder(p, r, 1.2 * er, er, NU, 24.244620170823282 * a_r)
+    assert abs(h.c - ref.c) < 1e-9 * a_r and abs(h.w - ref.w) < 1e-9 * a_r
+    assert a_r / math.sqrt(1.2) < h.w < a_r
+    assert integrate.quad(h.pressure, h.c - h.w, h.c + h.w, limit=400)[0] == pytest.approx(p, rel=1e-8)
+
+
 @pytest.mark.parametrize("de", [0.3, 1.0, 3.0, pytest.param(10.0, marks=pytest.mark.slow)])
 def test_steady_boundary_elements_match_hunter_within_2_percent(de):
     """The steady viscoelastic solver (solver.visco.steady, exact SLS update per cell) on a rigid cylinder in plane
