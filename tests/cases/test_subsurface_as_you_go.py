@@ -192,6 +192,6 @@ def test_stresses_stored_with_other_filters_are_computed_again_not_copied(tmp_pa
     done = rollcontact.restart(source, step=step, output=out, overrides={"motion.periods": 2}, stresses=True,
                                depths=[0, 0.5, 1.5, 4])
     inherited = [int(s) for s in done.field_steps if s <= step]
-    assert done.status == "complete" and inherited and done.subsurface["reused"] == []
-    assert set(inherited) <= set(done.subsurface["computed"])
+    assert done.status == "complete" and inherited and done.subsurface.reused == []
+    assert set(inherited) <= set(done.subsurface.computed)
     assert_same_as_computed_afterwards(out, tmp_path, depths=[0, 0.5, 1.5, 4])
