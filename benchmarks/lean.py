@@ -26,7 +26,8 @@ Cases
 * outputs: the paper run file, a steady creep run (creep_circle.toml) and the subsurface stresses of the paper file,
   this install against the baseline, dataset by dataset (identical, or the largest difference relative to the
   largest value of the quantity: a vector's components share one scale).
-JSON: DIR/lean.json (default results/lean/). Units: s, MB (2^20 bytes).
+JSON: DIR/lean.json (-o DIR, default results/benchmarks/; benchmarks/_record.py records date, machine, load).
+Units: s, MB (2^20 bytes).
 """
 import argparse
 import json
@@ -38,6 +39,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import _record
 
 HERE = Path(__file__).resolve().parent
 SCENES = HERE / "scenes"
@@ -216,14 +219,13 @@ def main(argv=None):
     ap.add_argument("--decks", help="folder of CONTACT's inputs " + ", ".join(f"{d}.inp" for d in DECKS.values()))
     ap.add_argument("--repeats", type=int, default=5, help="runs per variant (median; default 5)")
     ap.add_argument("--quick", action="store_true", help="2 repeats, no dx = 0.05 scene")
-    ap.add_argument("-o", "--out", default="results/lean", help="output folder (default results/lean)")
+    _record.add_output(ap)
     args = ap.parse_args(argv)
     if bool(args.contact) != bool(args.decks):
         ap.error("--contact and --decks go together")
     repeats = 2 if args.quick else args.repeats
     lean, base = sys.executable, str(Path(args.baseline).absolute())
-    result = {"date": time.strftime("%Y-%m-%d %H:%M"), "machine": f"{os.cpu_count()} cores", "repeats": repeats,
-              "baseline": base, "load_before": os.getloadavg()[0]}
+    result = {"repeats": repeats, "baseline": base}
     with tempfile.TemporaryDirectory() as tmp:
         def run_cmd(python, extra, name):
             return [rollcontact(python), "run", "-q", "--overwrite", "-o", str(Path(tmp) / name), *extra]
@@ -301,11 +303,9 @@ def main(argv=None):
                   + (f", texts differ: {texts}" if texts else ", texts equal")
                   + f"; FFT products {c['iteration_totals'][0]:.0f} against {c['iteration_totals'][1]:.0f}",
                   flush=True)
-    result["load_after"] = os.getloadavg()[0]
-    folder = Path(args.out)
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "lean.json").write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {folder / 'lean.json'} (load {result['load_before']:.2f} -> {result['load_after']:.2f})")
+    path = _record.write("lean", result, args.output)
+    load = json.loads(path.read_text())["recorded"]["load"]
+    print(f"load {load['start'][0]:.2f} -> {load['end'][0]:.2f}")
 
 
 def _report(case, res):

@@ -13,7 +13,7 @@ sizes of the blocks it keeps, for the paper scene and its fine-grid variant.
   in-memory checkpoint file.
 Scenes: the default perpendicular paper scene at f_t = 0.77 (10 periods, dx = 0.2 mm, 55 x 65 elements), and 'fine'
 the same at dx = 0.05 mm (217 x 261 elements; about a minute and a half of CPU). --quick: the paper scene only.
-JSON: DIR/memory_consumers.json (default results/lean/). Units: MB (2^20 bytes).
+JSON: DIR/memory_consumers.json (-o DIR, default results/benchmarks/; benchmarks/_record.py). Units: MB (2^20 bytes).
 """
 import argparse
 import json
@@ -25,6 +25,8 @@ import sys
 import tempfile
 import threading
 import time
+
+import _record
 
 HERE = Path(__file__).resolve().parent
 SCENES = {"paper": ["load.ft=0.77"], "fine": ["load.ft=0.77", "grid.dx=0.05"]}
@@ -144,14 +146,14 @@ def main(argv=None):
                                  formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     ap.add_argument("--quick", action="store_true", help="the paper scene only")
     ap.add_argument("--scene", nargs="+", choices=sorted(SCENES), help="scenes to probe (default: paper fine)")
-    ap.add_argument("-o", "--out", default="results/lean", help="output folder (default results/lean)")
+    _record.add_output(ap)
     ap.add_argument("--child", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
         print(json.dumps(probe(SCENES[args.child])))
         return
     names = args.scene or (["paper"] if args.quick else ["paper", "fine"])
-    out = {"date": time.strftime("%Y-%m-%d %H:%M"), "load_before": os.getloadavg()[0], "scenes": {}}
+    out = {"scenes": {}}
     for name in names:
         proc = subprocess.run([sys.executable, __file__, "--child", name], capture_output=True, text=True,
                               check=True)
@@ -162,11 +164,7 @@ def main(argv=None):
             print(f"    RSS {value:7.1f} MB  {label}")
         for label, value in res["held_mb"].items():
             print(f"    held {value:6.1f} MB  {label}")
-    out["load_after"] = os.getloadavg()[0]
-    folder = Path(args.out)
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "memory_consumers.json").write_text(json.dumps(out, indent=1) + "\n")
-    print(f"written to {folder / 'memory_consumers.json'} (load {out['load_before']:.2f} -> {out['load_after']:.2f})")
+    _record.write("memory_consumers", out, args.output)
 
 
 if __name__ == "__main__":

@@ -222,10 +222,14 @@ class SceneLimits:
         if ro.mode != "transient":
             return
         step = ro.step if ro.step is not None else self.spacing[0]
-        if self.transient_grid == "contact":           # the grid moves with the contact: the distance adds nothing
-            rolling_frame_grid(self, trail=step)
-            return
         distance = ro.distance if ro.distance is not None else 8.0 * self.rolling_half_length
+        if self.transient_grid == "contact":           # the grid moves with the contact: the distance adds steps only
+            rolling_frame_grid(self, trail=step)
+            if rolling_steps(distance, step) > MAX_STEPS:
+                raise SceneError(f"[rolling] distance = {distance:.6g} mm in steps of {step:.6g} mm: more than "
+                                 f"{MAX_STEPS} steps per run; allowed range is distance <= {MAX_STEPS * step:.6g} mm "
+                                 "at this step")
+            return
         try:
             rolling_frame_grid(self, travel=rolling_steps(distance, step) * step)
         except InputError as exc:
