@@ -111,12 +111,18 @@ class StepRecorder:
             self.snapshot(self.last)
 
     def trim_to_whole_steps(self):
-        """After an interrupt, which may come between the appends of one step: keep the steps recorded in full
-        (and forget `last` when its appends were cut short)."""
+        """After an interrupt, which may come between the appends of one step: keep the steps recorded in full, up to
+        the last step `add` finished (a row whose step was cut short before `last` was set goes, with its snapshot),
+        and forget `last` when its own appends were cut short."""
         n = min(len(v) for v in self.history.values())
+        if self.last is not None and n and self.history["step"][n - 1] != self.last.step \
+                and self.last.step in self.history["step"][:n]:
+            n = self.history["step"].index(self.last.step) + 1     # a row appended, the step not yet done: drop it
         for v in self.history.values():
             del v[n:]
         m = min([len(self.stored)] + [len(v) for v in (self.chunks if self.compress else self.fields).values()])
+        while m and n and self.stored[m - 1] > self.history["step"][n - 1]:
+            m -= 1
         del self.stored[m:]
         for v in list(self.fields.values()) + list(self.chunks.values()):
             del v[m:]
