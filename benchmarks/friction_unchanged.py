@@ -1,26 +1,28 @@
-"""Runs without [friction] are bit for bit what they were before the friction laws (issue #34): digests of every array.
+"""Runs without [friction] are bit for bit what they were before the friction laws (issue #34): every stored array of
+the same scenes, run by a reference tree and by this one, compared bitwise.
 
-    .venv/bin/python benchmarks/friction_unchanged.py --write DIGESTS.json      # on the reference tree (e.g. main)
-    .venv/bin/python benchmarks/friction_unchanged.py --check DIGESTS.json      # on the tree under test
+    git archive <commit> | tar -x -C /tmp/base          # the reference tree (e.g. the merge base with main)
+    .venv/bin/python benchmarks/friction_unchanged.py --base /tmp/base [--quick] [-o DIR]
 
 Runs the paper scene (cases/paper_perpendicular.toml; one period with --quick, its ten otherwise), the shipped steady
-[rolling] scene (cases/creep_steady.toml) and a short transient of it, through the Python API, writes each to HDF5,
-reads it back and takes the SHA-256 of every stored array and summary value (the run's times aside: wall_time,
-cpu_time, time_per_step, checkpoint_time). --write stores the digests with the machine and the library versions;
---check recomputes them and lists every array that differs (exit status 1). Digests are bitwise: they hold on the
-machine and the FFTW wisdom they were taken with (the planner may choose other algorithms elsewhere, which changes the
-last bits); --check says so when the machine or the versions differ. The suite's test
-(tests/cases/test_friction_unchanged.py) checks the quick set against tests/cases/data/unchanged_digests.json.
+[rolling] scene (cases/creep_steady.toml) and a 3 mm transient of it, once with the reference tree's package and once
+with this one, each in its own process, and compares the SHA-256 of every stored array and summary value (the run's
+times aside: wall_time, cpu_time, time_per_step, checkpoint_time), and the scene text stored in each file. Both
+processes use one private FFTW wisdom file (ROLLCONTACT_CACHE in the output folder), so that both plan the same FFT
+algorithms: FFTW_MEASURE plans chosen under different loads may differ in the last bits, and the shared cache of
+~/.cache/rollcontact changes as other runs add to it. Writes DIR/friction_unchanged.json (default
+results/friction_unchanged/) and exits with status 1 when any array differs.
 """
 from __future__ import annotations
 
 import argparse
 import hashlib
 import json
-import platform
+import os
+from pathlib import Path
+import subprocess
 import sys
 import tempfile
-from pathlib import Path
 
 import numpy as np
 
@@ -43,6 +45,7 @@ def digest(value) -> str:
 
 
 def run_digests(quick: bool) -> dict:
+    """The digests of the scenes run by the rollcontact package this process imports."""
     import rollcontact
     from rollcontact.cases.scene.scene import shipped_scene_path
     out = {}
@@ -56,26 +59,15 @@ def run_digests(quick: bool) -> dict:
             d.update({f"fields/{k}": digest(v) for k, v in res.fields.items()})
             d["field_steps"] = digest(res.field_steps)
             d.update({f"summary/{k}": digest(v) for k, v in res.summary.items() if k not in TIMES and v is not None})
+            d["scene_toml"] = digest(res.scene_toml)
             out[name] = d
     return out
 
 
-def machine() -> dict:
-    import numba
-    import pyfftw
-    cpu = ""
-    try:
-        cpu = next(line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    return {"cpu": cpu or platform.processor(), "python": platform.python_version(), "numpy": np.__version__,
-            "numba": numba.__version__, "pyfftw": pyfftw.__version__}
-
-
-def compare(stored: dict, now: dict) -> list[str]:
+def compare(reference: dict, now: dict) -> list[str]:
     """The names whose digests differ (or are missing on either side)."""
     bad = []
-    for scene, ref in stored.items():
+    for scene, ref in reference.items():
         got = now.get(scene, {})
         for key in sorted(set(ref) | set(got)):
             if ref.get(key) != got.get(key):
@@ -83,26 +75,50 @@ def compare(stored: dict, now: dict) -> list[str]:
     return bad
 
 
+def _shim(base: Path, folder: Path) -> Path:
+    """A folder that imports the reference tree as `rollcontact` (its layers live beside the package, as in the
+    repository: pyproject.toml maps them)."""
+    pkg = folder / "reference_import" / "rollcontact"
+    pkg.mkdir(parents=True, exist_ok=True)
+    (pkg / "__init__.py").write_text((base / "rollcontact" / "__init__.py").read_text())
+    for layer in ("bem", "solver", "cases"):
+        link = pkg / layer
+        if not link.exists():
+            link.symlink_to((base / layer).resolve())
+    return pkg.parent
+
+
+def _digests_in_process(quick: bool, pythonpath: Path | None, cache: Path, out: Path) -> dict:
+    env = dict(os.environ, ROLLCONTACT_CACHE=str(cache))
+    if pythonpath is not None:
+        env["PYTHONPATH"] = str(pythonpath)
+    cmd = [sys.executable, str(Path(__file__).resolve()), "--digests-to", str(out)] + (["--quick"] if quick else [])
+    subprocess.run(cmd, env=env, check=True, cwd=tempfile.gettempdir())
+    return json.loads(out.read_text())
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    group = ap.add_mutually_exclusive_group(required=True)
-    group.add_argument("--write", type=Path, help="store the digests of this tree in this JSON file")
-    group.add_argument("--check", type=Path, help="compare this tree's digests with this JSON file")
-    ap.add_argument("--quick", action="store_true", help="one period of the paper scene (the suite's set)")
+    ap.add_argument("--base", type=Path, help="source tree of the reference commit (git archive of it)")
+    ap.add_argument("--quick", action="store_true", help="one period of the paper scene")
+    ap.add_argument("-o", "--out", type=Path, default=Path("results") / "friction_unchanged",
+                    help="folder for the report and the private FFTW wisdom (default results/friction_unchanged)")
+    ap.add_argument("--digests-to", type=Path, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
-    now = run_digests(args.quick)
-    if args.write:
-        args.write.parent.mkdir(parents=True, exist_ok=True)
-        args.write.write_text(json.dumps({"quick": args.quick, "machine": machine(), "digests": now}, indent=1) + "\n")
-        print(f"digests of {sum(len(v) for v in now.values())} arrays written to {args.write}")
+    if args.digests_to:
+        args.digests_to.write_text(json.dumps(run_digests(args.quick)))
         return 0
-    stored = json.loads(args.check.read_text())
-    if stored["quick"] != args.quick:
-        ap.error(f"{args.check} holds the {'quick' if stored['quick'] else 'full'} set: give --quick accordingly")
-    if stored["machine"] != machine():
-        print(f"note: digests taken on {stored['machine']}, this is {machine()}: bitwise equality is not expected")
-    bad = compare(stored["digests"], now)
-    print("\n".join(bad) if bad else f"all {sum(len(v) for v in now.values())} arrays bit for bit the same")
+    if args.base is None:
+        ap.error("--base DIR: the reference tree is required")
+    args.out.mkdir(parents=True, exist_ok=True)
+    cache = args.out / "cache"
+    reference = _digests_in_process(args.quick, _shim(args.base, args.out), cache, args.out / "reference.json")
+    now = _digests_in_process(args.quick, None, cache, args.out / "this_tree.json")
+    bad = compare(reference, now)
+    report = {"quick": args.quick, "base": str(args.base), "arrays": sum(len(v) for v in now.values()),
+              "differing": bad}
+    (args.out / "friction_unchanged.json").write_text(json.dumps(report, indent=1) + "\n")
+    print("\n".join(bad) if bad else f"all {report['arrays']} arrays and values bit for bit the same")
     return 1 if bad else 0
 
 

@@ -27,6 +27,12 @@ HISTORY_NAMES = tuple(HISTORY_UNITS)
 #: /history of a [rolling] transient run (cases.run.creep_transient) adds: M_z the moment on the rolling sphere
 #: about the contact centre (Kalker's convention), xi, eta the creepages of the step, cpu_time its process CPU time.
 CREEP_HISTORY_UNITS = {"M_z": "N mm", "xi": "-", "eta": "-", "cpu_time": "s"}
+#: /history of a scene with a speed adds `time`, the end of each step (s; step n at n step_time); with a [friction] law
+#: `friction_iterations` (the solves of the step's slip-velocity iteration) and `frictional_power` (W, sum tau . s dA
+#: with s the slip velocity); with [thermal] (transient [rolling]) T1_max, T2_max, the largest surface temperatures.
+FRICTION_HISTORY_UNITS = {"time": "s", "friction_iterations": "-", "frictional_power": "W", "T1_max": "degC",
+                          "T2_max": "degC"}
+FRICTION_HISTORY = ("friction_iterations", "frictional_power")
 
 #: /fields: snapshots of shape (stored steps, ny, nx), name -> unit. p, tau: pressure and traction exerted by the
 #: sphere on the substrate; u: displacements of the substrate surface relative to the sphere; slip: of that step.
@@ -35,6 +41,12 @@ FIELD_UNITS = {
     "u_y": "mm", "region": "0 exterior, 1 stick, 2 slip",
 }
 FIELD_NAMES = tuple(FIELD_UNITS)
+#: /fields of a run with a [friction] law add mu, the local coefficient of friction that bounds the step's traction (the
+#: memory state at its end), and slip_velocity, the magnitude of the slip velocity (slip of the step over its time, or
+#: the speed times the slip per unit rolled distance in steady rolling); with [thermal] T1, T2, the surface temperatures
+#: of body 1 (the sphere) and body 2 (the substrate).
+FRICTION_FIELD_UNITS = {"mu": "-", "slip_velocity": "mm/s", "T1": "degC", "T2": "degC"}
+FRICTION_FIELDS = ("mu", "slip_velocity")
 
 #: /summary: name -> unit ('-': dimensionless, a count or text). Normalised values follow seed Eq. 9:
 #: f_t = Ft/(mu Fn), w = W/a, u = U/U0 with U0 = mu E* d/G*. U_perp: the final shift across Ft,
@@ -46,11 +58,16 @@ SUMMARY_UNITS = {
     "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
-    "speed": "mm/s", "step_time": "s",
+    "speed": "mm/s", "step_time": "s", "mu_static": "-", "friction_law": "-", "frictional_power": "W",
+    "T1_max": "degC", "T2_max": "degC", "friction_feedback": "-",
 }
 #: dissipation_per_period: the frictional work of the last complete period (sum of /history/dissipation over it).
 #: speed: the scene's rolling speed (motion.speed or rolling.speed), step_time: the duration of every step (its
-#: displacement over the speed; Scene.step_time); both only in a scene with a speed.
+#: displacement over the speed; Scene.step_time); both only in a scene with a speed. With a [friction] law: mu_static
+#: (its mu(0), the mu of f_t = Ft/(mu Fn) and U0), friction_law (the law in words), frictional_power (W, of the last
+#: step or of the steady state), friction_feedback (the largest J of the slip-velocity iteration: >= 1 where falling
+#: friction may give the quasi-static problem several solutions, docs/friction.md); with [thermal] T1_max, T2_max
+#: (degC), the largest surface temperatures of the last step or the steady state.
 
 #: /subsurface: z (depths below the surface, mm), step (the stored steps), and per name a dataset of shape
 #: (snapshots, nz, ny, nx): the stress components in the frame (x, y, z = depth into the substrate), tension
@@ -62,7 +79,8 @@ SUBSURFACE_UNITS = {
 SUBSURFACE_NAMES = tuple(SUBSURFACE_UNITS)
 
 #: Units of every stored dataset (its 'units' attribute in HDF5).
-UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
+UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **FRICTION_HISTORY_UNITS, **FIELD_UNITS, **FRICTION_FIELD_UNITS,
+         **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
 
 
 @dataclass

@@ -31,6 +31,7 @@ from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.run.creep_steady import solve_scene
 from rollcontact.cases.run.discretise import scene_operator
+from rollcontact.cases.run.friction_outputs import friction_fields, friction_summary
 from rollcontact.cases.run.creep_transient import run_transient
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces
 from rollcontact.cases.scene.scene import Scene
@@ -74,10 +75,14 @@ def _result(scene, grid, op, state, wall):
                    iterations=[normal.iterations + steady.sweeps], normal_iterations=[normal.iterations],
                    tangential_iterations=[steady.sweeps], outer_iterations=[outer],
                    residual=[max(normal.residual, steady.change)], wall_time=[wall])
+    if scene.speed is not None:
+        history["time"] = [0.0]        # the steady state: one row, at t = 0
+    if steady.friction is not None:
+        history.update(friction_iterations=[steady.friction.iterations], frictional_power=[steady.friction.power])
     history = {k: np.asarray(v) for k, v in history.items()}
     fields = {"p": normal.pressure, "u_z": normal.displacement, "tau_x": tau_sub[0], "tau_y": tau_sub[1],
               "slip_x": -steady.slip[0] * grid.dx, "slip_y": -steady.slip[1] * grid.dx, "u_x": u[0], "u_y": u[1],
-              "region": region}
+              "region": region, **friction_fields(steady.friction)}
     fields, stored = _stored(scene, fields, 0)
     ro, pair = scene.rolling, scene.material_pair
     a, b = scene.semi_axes
@@ -91,6 +96,8 @@ def _result(scene, grid, op, state, wall):
                    steps_planned=1, iterations=int(history["iterations"][0]), wall_time=wall, fidelity="bem")
     if scene.speed is not None:
         summary["speed"] = scene.speed
+    if steady.friction is not None:
+        summary.update(friction_summary(scene, history, steady.friction))
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=fields, field_steps=stored, summary=summary, version=version())
 

@@ -28,6 +28,8 @@ from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.run.creep_steady import steady_state
 from rollcontact.cases.run.discretise import scene_operator
+from rollcontact.cases.run.friction_outputs import friction_fields, friction_summary, temperature_summary
+from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces, rolling_frame_gap
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep.world import roll_world, rolling_steps
@@ -35,9 +37,6 @@ from rollcontact.solver.normal import NormalParams
 from rollcontact.solver.rolling import FunctionProfile, StepParams
 from rollcontact.solver.rolling.energy import frictional_work
 from rollcontact.solver.tangential import TangentialParams
-
-FIELDS = ("p", "u_z", "tau_x", "tau_y", "slip_x", "slip_y", "u_x", "u_y", "region")
-
 
 def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
     """Roll the scene's [rolling] transient and return its RunResult (t_start: the run's perf_counter start);
@@ -64,15 +63,16 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
     xi, eta, phi = scene.creepages
     forces = scene.prescribed_forces
     keep = _stored_steps(scene.output.fields, n, math.ceil(2.0 * scene.rolling_half_length / step - 1e-9))
-    rows, fields, stored = [], {k: [] for k in FIELDS}, []
+    friction = local_friction(scene, grid)
+    rows, fields, stored = [], {}, []
     for rec in roll_world(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
                           distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
-                          phi=phi, forces=forces, initial=ro.initial or "rest", params=params):
-        rows.append(_row(rec, grid))
+                          phi=phi, forces=forces, initial=ro.initial or "rest", params=params, friction=friction):
+        rows.append(_row(rec, grid, scene.step_time))
         if rec.step in keep:
             stored.append(rec.step)
             for k, v in _fields(rec).items():
-                fields[k].append(v)
+                fields.setdefault(k, []).append(v)
         last = rec
     wall, cpu = time.perf_counter() - t_start, time.process_time() - c_start
     history = {k: np.asarray([r[k] for r in rows]) for k in rows[0]}
@@ -91,6 +91,9 @@ def run_transient(scene: Scene, t_start: float, *, progress=None) -> RunResult:
                    time_per_step=float(history["wall_time"][1:].mean()), fidelity="bem")
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=scene.step_time)
+    if last.friction is not None:
+        summary.update(friction_summary(scene, history, last.friction))
+        summary.update({f"{k}_steady": v for k, v in temperature_summary(steady.friction).items()})
     out = {k: np.asarray(v) for k, v in fields.items()} if stored else {}
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=out, field_steps=np.asarray(stored, dtype=np.int64), summary=summary, version=version())
@@ -108,10 +111,16 @@ def _stored_steps(choice: str, n: int, per_length: int) -> set:
     return set(range(0, n + 1, max(per_length, 1))) | {n}
 
 
-def _row(rec, grid) -> dict:
-    """The history row of one step (run-file meaning: the force on the substrate; M_z, xi, eta in Kalker's)."""
+def _row(rec, grid, step_time=None) -> dict:
+    """The history row of one step (run-file meaning: the force on the substrate; M_z, xi, eta in Kalker's); with a
+    step time its time (s), with a friction law its iterations and frictional power, with temperatures their
+    largest values."""
     nr, tr = rec.normal, rec.tangential
     dA = grid.cell_area
+    extra = {} if step_time is None else {"time": rec.step * step_time}
+    if rec.friction is not None:
+        extra.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power)
+        extra.update({f"{k}": v for k, v in temperature_summary(rec.friction).items()})
     return dict(step=rec.step, period=0, W_x=rec.centre, W_y=0.0, approach=nr.approach, Fn=nr.force,
                 contact_area=float(nr.contact.sum()) * dA, stick_area=rec.stick_cells * dA,
                 U_x=float(rec.rigid_shift[0]), U_y=float(rec.rigid_shift[1]), F_x=float(tr.force[0]),
@@ -119,7 +128,7 @@ def _row(rec, grid) -> dict:
                 iterations=nr.iterations + tr.iterations, normal_iterations=nr.iterations,
                 tangential_iterations=tr.iterations, outer_iterations=rec.outer_iterations,
                 residual=max(nr.residual, tr.residual), wall_time=rec.wall_time, cpu_time=rec.cpu_time,
-                dissipation=frictional_work(tr.traction, tr.slip, dA))
+                dissipation=frictional_work(tr.traction, tr.slip, dA), **extra)
 
 
 def _fields(rec) -> dict:
@@ -128,4 +137,5 @@ def _fields(rec) -> dict:
     nr, tr = rec.normal, rec.tangential
     u = tr.displacement
     return {"p": nr.pressure, "u_z": nr.displacement, "tau_x": tr.traction[0], "tau_y": tr.traction[1],
-            "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": u[0], "u_y": u[1], "region": tr.region}
+            "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": u[0], "u_y": u[1], "region": tr.region,
+            **friction_fields(rec.friction)}

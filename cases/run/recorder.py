@@ -5,40 +5,47 @@ from __future__ import annotations
 import numpy as np
 
 from rollcontact.cases.results.hdf5 import compress_snapshot
-from rollcontact.cases.results.run_result import FIELD_NAMES, HISTORY_NAMES
+from rollcontact.cases.results.run_result import FIELD_NAMES, FRICTION_FIELDS, FRICTION_HISTORY, HISTORY_NAMES
 
 
 class StepRecorder:
     """Per-step history and the snapshots of the steps in `snapshot_steps`; a restart starts from the stored history
     and snapshots up to its step (`restart`: cases.run.restart.RestartSource). With `compress`, each snapshot is
     also kept as the gzip chunks of the run file (`chunks`), compressed once however often the file is written.
-    `transverse`: the unit vector across Ft (Scene.transverse_direction), along which U_perp is measured."""
+    `transverse`: the unit vector across Ft (Scene.transverse_direction), along which U_perp is measured. A path with
+    a step time adds the history column `time` (s); `friction` (a run with a friction law) the fields mu and
+    slip_velocity and the history columns friction_iterations and frictional_power."""
 
-    def __init__(self, grid, path, snapshot_steps, restart=None, compress=False, transverse=(0.0, 1.0)):
+    def __init__(self, grid, path, snapshot_steps, restart=None, compress=False, transverse=(0.0, 1.0),
+                 friction=False):
         self.cell_area = grid.cell_area
         self.transverse = (float(transverse[0]), float(transverse[1]))
         self.shape = grid.shape
         self.period = path.period
         self.snapshot_steps = set(int(s) for s in snapshot_steps)
-        self.history = {k: [] for k in HISTORY_NAMES}
-        self.fields = {k: [] for k in FIELD_NAMES}
+        self.step_time = path.step_time
+        self.history_names = HISTORY_NAMES + (("time",) if path.step_time is not None else ()) \
+            + (FRICTION_HISTORY if friction else ())
+        self.field_names = FIELD_NAMES + (FRICTION_FIELDS if friction else ())
+        self.history = {k: [] for k in self.history_names}
+        self.fields = {k: [] for k in self.field_names}
         self.stored = []
         self.compress = compress
-        self.chunks = {k: [] for k in FIELD_NAMES}
+        self.chunks = {k: [] for k in self.field_names}
         self.last = None     # the record of the last step recorded in full
         if restart is not None:
             n = restart.step + 1
             stored = restart.data.history
-            for k in HISTORY_NAMES:
+            for k in self.history_names:
                 if k == "U_perp" and k not in stored:      # a file written before U_perp existed
                     self.history[k] = list(self._across(np.asarray(stored["U_x"]), np.asarray(stored["U_y"]))[:n])
                 else:                                      # dissipation: NaN in files written before it existed
                     self.history[k] = list(np.asarray(stored[k])[:n]) if k in stored else [np.nan] * n
             steps, fields = restart.snapshots()
             self.stored = [int(s) for s in steps]
-            self.fields = {k: list(fields[k]) for k in FIELD_NAMES}
+            self.fields = {k: list(fields[k]) for k in self.field_names}
             if compress:
-                self.chunks = {k: [compress_snapshot(v) for v in fields[k]] for k in FIELD_NAMES}
+                self.chunks = {k: [compress_snapshot(v) for v in fields[k]] for k in self.field_names}
 
     @property
     def n_steps(self) -> int:
@@ -56,6 +63,10 @@ class StepRecorder:
                    normal_iterations=nr.iterations, tangential_iterations=tr.iterations,
                    outer_iterations=rec.outer_iterations, residual=max(nr.residual, tr.residual),
                    wall_time=rec.wall_time, dissipation=rec.dissipation)
+        if self.step_time is not None:
+            row["time"] = rec.step * self.step_time
+        if rec.friction is not None:
+            row.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power)
         for k, v in row.items():
             self.history[k].append(v)
         if rec.step in self.snapshot_steps:
@@ -126,9 +137,12 @@ class StepRecorder:
 def field_values(rec) -> dict:
     """The stored fields of a step record (solver.rolling.stepping.StepRecord), name -> (ny, nx) array."""
     nr, tr = rec.normal, rec.tangential
-    return {"p": nr.pressure, "u_z": nr.displacement, "tau_x": tr.traction[0], "tau_y": tr.traction[1],
-            "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": tr.displacement[0], "u_y": tr.displacement[1],
-            "region": tr.region}
+    out = {"p": nr.pressure, "u_z": nr.displacement, "tau_x": tr.traction[0], "tau_y": tr.traction[1],
+           "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": tr.displacement[0], "u_y": tr.displacement[1],
+           "region": tr.region}
+    if rec.friction is not None:
+        out.update(mu=rec.friction.mu, slip_velocity=rec.friction.slip_velocity)
+    return out
 
 
 def field_dtype(name: str):

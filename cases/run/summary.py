@@ -10,6 +10,7 @@ import numpy as np
 
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
+from rollcontact.cases.run.friction_outputs import friction_summary
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.shakedown import SETTLED_STATES, classify, cyclic_slip
 from rollcontact.solver.rolling.stepping import LoadPath
@@ -48,6 +49,8 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     summary["dissipation_per_period"] = dissipation_per_period(path.period, history)
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=path.step_time)
+    if scene.friction_on:
+        summary.update(friction_summary(scene, history))
     if state_label:
         summary["state"] = state_label
     elif path.period.max() == 0:

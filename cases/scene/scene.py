@@ -13,6 +13,8 @@ Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contr
     [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction; distance, step
                 (mm) and initial ("rest", "cattaneo") of a transient; speed (mm/s): rolling on with creepage and
                 spin, in place of [motion] and a tangential load (Kalker's convention, solver.creep)
+    [friction]  law and its keys: a friction law in place of load.mu (cases.scene.friction, docs/friction.md)
+    [thermal]   conductivity1/2, density1/2, heat_capacity1/2, T_bulk1/2: surface temperatures ([rolling] scenes)
     [grid]      dx, dy, margin
     [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
@@ -39,8 +41,10 @@ from rollcontact.bem.errors import SceneError
 from rollcontact.bem.materials import MaterialPair
 from rollcontact.cases.scene.geometry import (
     SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
+from rollcontact.cases.scene.friction import check_friction, friction_on, thermal_on
 from rollcontact.cases.scene.keys import (
-    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, check_key)
+    SECTIONS, Friction, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, Thermal,
+    check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
@@ -65,6 +69,8 @@ class Scene(SceneLimits):
     load: Load = field(default_factory=Load)
     motion: Motion = field(default_factory=Motion)
     rolling: Rolling = field(default_factory=Rolling)
+    friction: Friction = field(default_factory=Friction)
+    thermal: Thermal = field(default_factory=Thermal)
     grid: GridSpec = field(default_factory=GridSpec)
     solver: SolverSpec = field(default_factory=SolverSpec)
     output: Output = field(default_factory=Output)
@@ -96,6 +102,7 @@ class Scene(SceneLimits):
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
         scene._check_rolling(data)
+        check_friction(scene, data)      # a friction law puts its static coefficient in load.mu
         scene._check_consistency()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
@@ -130,14 +137,19 @@ class Scene(SceneLimits):
         return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
-        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]."""
+        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion];
+        [friction] and [thermal] only when given (and then no load.mu: the law gives it)."""
         out = {}
         for sec in SECTIONS:
             if sec == ("motion" if self.rolling_on else "rolling"):
                 continue
+            if (sec == "friction" and not self.friction_on) or (sec == "thermal" and not self.thermal_on):
+                continue
             obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
+        if self.friction_on:
+            out["load"].pop("mu", None)
         return out
 
     def to_toml(self) -> str:
@@ -183,12 +195,24 @@ class Scene(SceneLimits):
                 section.pop(other.partition(".")[2], None)
             section[name] = value
             given[f"{sec}.{name}"] = item
+        if not self.friction_on and any(key.startswith("friction.") for key in given) and "load.mu" not in given:
+            data["load"].pop("mu", None)   # a law set from the command line takes the place of load.mu
         if "geometry.shape" in given:  # a new shape: the old shape's keys that it does not take are dropped
             keep = SHAPE_KEYS.get(data["geometry"]["shape"], ())
             for name in list(data["geometry"]):
                 if name != "shape" and name not in keep and f"geometry.{name}" not in given:
                     del data["geometry"][name]
         return Scene.from_dict(data, name=self.name)
+
+    @property
+    def friction_on(self) -> bool:
+        """True for a scene with a [friction] law (cases.scene.friction)."""
+        return friction_on(self)
+
+    @property
+    def thermal_on(self) -> bool:
+        """True for a scene with a [thermal] section (surface temperatures)."""
+        return thermal_on(self)
 
     @property
     def rolling_on(self) -> bool:

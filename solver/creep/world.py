@@ -76,6 +76,7 @@ class CreepStep:
     outer_iterations: int
     wall_time: float
     cpu_time: float
+    friction: object = None     # with a friction law: its solver.friction.FrictionState (local mu, slip velocity, ...)
 
     @property
     def stick_cells(self) -> int:
@@ -91,12 +92,14 @@ def rolling_steps(distance: float, step: float) -> int:
 
 
 def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0, forces=None, initial="rest",
-               params: StepParams = StepParams()) -> Iterator[CreepStep]:
+               params: StepParams = StepParams(), friction=None) -> Iterator[CreepStep]:
     """Roll body 1 along +x of the world-fixed grid of `op` (bem.HalfSpaceOperator) from the initial state, in
     steps of `step` mm over at least `distance` mm (`rolling_steps`), yielding the initial state (step 0) and each
     step. profile(X, Y, centre) -> h (mm), the undeformed gap about the contact centre (solver.rolling.profiles);
     Fn (N) and mu as in `run_path`; creepages xi, eta and spin phi (1/mm), or forces = (Fx, Fy) N on body 1 in place
-    of xi, eta. Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
+    of xi, eta. friction: a friction law (solver.friction.LocalFriction, its speed the rolling speed; mu is then its
+    static coefficient): every step is solved consistently with it over the step's time step / speed, and carries its
+    FrictionState (local mu, slip velocity, temperatures). Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
     the initial state, before rolling) or when the contact reaches the grid's edge, GrossSlidingError for
     |F| >= mu Fn, ConvergenceError if a solver fails."""
     n = rolling_steps(distance, step)
@@ -136,9 +139,22 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         elif load == "creep":
             F = -forces                                                       # on the substrate
             kw = dict(extra_slip=creep_slip(centre, (0.0, 0.0))) if phi != 0.0 else {}
-        normal, tang, outer = solve_coupled_step(
-            op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal, tangential_params=params.tangential,
-            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess, **kw)
+        if friction is None:
+            normal, tang, outer = solve_coupled_step(
+                op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal,
+                tangential_params=params.tangential, coupling_tol=params.coupling_tol, max_outer=params.max_outer,
+                pressure_guess=guess, **kw)
+            local = None
+        else:
+            normal, tang, outer, local = friction.step(
+                lambda m, tau0, p0, accuracy: solve_coupled_step(
+                    op, h, Fn, F, p_prev, tau_prev, mu=m, normal_params=params.normal,
+                    tangential_params=params.loosened(accuracy), coupling_tol=params.coupling_tol,
+                    max_outer=params.max_outer, pressure_guess=guess if p0 is None else p0, initial_traction=tau0,
+                    **kw),
+                op=op, dt=step / friction.speed if friction.speed else None,
+                previous_mu=None if previous is None else previous.friction.mu,
+                moved=(0, 0) if previous is None else (0, round((centre - previous.centre) / grid.dx)))
         check_contact_inside(normal.contact, k, (centre, 0.0))
         tau = tang.traction
         moment = -float(((X - centre) * tau[1] - Y * tau[0]).sum() * dA)
@@ -149,7 +165,7 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         else:
             creep = (float(tang.shift_increment[0]) / step, float(tang.shift_increment[1]) / step)
         return CreepStep(k, centre, normal, tang, -np.asarray(tang.force, dtype=float), moment, (*creep, phi),
-                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0)
+                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0, local)
 
     rec = solve(0, 0.0, None, "rest")
     if initial == "cattaneo":

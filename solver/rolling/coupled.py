@@ -25,7 +25,8 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
-                       coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None):
+                       coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None,
+                       initial_traction=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -35,8 +36,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     Fn : normal force (N). F : (Fx, Fy) tangential force on the substrate (N), or None with `shift`.
     previous_pressure : (ny, nx) p' of the previous step (MPa), or None for zero (virgin contact).
     previous_traction : (2, ny, nx) tau' of the previous step (MPa).
-    mu : Coulomb friction coefficient (the bound is g = mu p). [Not in the issue's signature: the bound
-        needs it.]
+    mu : Coulomb friction coefficient (the bound is g = mu p), or a local coefficient per element (ny, nx), as a
+        friction law gives it (solver.friction).
     normal_params, tangential_params : the inner solvers' tolerances.
     coupling_tol : stop when max|p_k - p_{k-1}| <= coupling_tol max p_k and
         max|tau_k - tau_{k-1}| <= coupling_tol mu max p_k.
@@ -48,6 +49,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     extra_slip : (2, ny, nx) mm, a given slip of the step added to the tangential problem's (solve_tangential's
         `extra_slip`), e.g. the rigid creep slip of a rolling step (solver.creep.world); it is not part of the
         returned `displacement`.
+    initial_traction : (2, ny, nx) MPa, a warm start of the tangential solve (default: the previous traction), e.g.
+        the last iterate of a friction law's iteration (solver.friction.transient). Only the start changes.
 
     Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
     with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
@@ -55,8 +58,10 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     TangentialResult's `displacement` is the surface displacement A^tt tau + A^tz p (mm), so that
     s = u - u' - dU between two steps.
     """
-    if not (mu > 0):
+    local = np.ndim(mu) > 0
+    if not (np.all(np.asarray(mu) > 0) if local else mu > 0):
         raise InputError(f"mu = {mu!r}: the friction coefficient must be > 0")
+    mu_max = float(np.max(mu)) if local else mu
     shape = op.grid.shape
     p_prev = np.zeros(shape) if previous_pressure is None else np.asarray(previous_pressure, dtype=float)
     tau_prev = np.asarray(previous_traction, dtype=float)
@@ -72,12 +77,12 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     if not op.coupled:
         normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
-                                params=tangential_params)
+                                initial=initial_traction, params=tangential_params)
         if given is not None:
             tang = replace(tang, displacement=tang.displacement - given)
         return normal, tang, 1
 
-    tau = tau_prev.copy()
+    tau = (tau_prev if initial_traction is None else np.asarray(initial_traction, dtype=float)).copy()
     p = p_prev.copy()
     p_guess = initial_p
     change = np.inf
@@ -98,7 +103,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
         t_steps += tang.steps
         pmax = float(normal.pressure.max())
         dp = float(np.abs(normal.pressure - p).max()) / pmax
-        dt = float(np.abs(tang.traction - tau).max()) / (mu * pmax)
+        dt = float(np.abs(tang.traction - tau).max()) / (mu_max * pmax)
         change = max(dp, dt)
         p, tau, p_guess = normal.pressure, tang.traction, normal.pressure
         if outer > 1 and change <= coupling_tol:
@@ -109,6 +114,6 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
                     replace(tang, iterations=t_products, steps=t_steps, displacement=total), outer)
     raise ConvergenceError("Panagiotopoulos loop (coupled normal/tangential) did not converge",
                            solver="coupled", iterations=max_outer, residual=change, tol=coupling_tol,
-                           regime=f"beta = {op.materials.beta:.4g}, mu = {mu}, "
-                                  + (f"f_t = {float(np.hypot(*np.asarray(F, float))) / (mu * Fn):.4g}"
+                           regime=f"beta = {op.materials.beta:.4g}, mu = {mu_max}{' (largest local)' if local else ''}, "
+                                  + (f"f_t = {float(np.hypot(*np.asarray(F, float))) / (mu_max * Fn):.4g}"
                                      if F is not None else f"prescribed shift {tuple(shift)} mm"))

@@ -163,6 +163,8 @@ class StepState:
     traction: np.ndarray            # (2, ny, nx) MPa
     rigid_shift: np.ndarray         # (2,) mm, U
     approach: float = 0.0           # mm
+    mu: np.ndarray | None = None    # (ny, nx) local friction coefficient at the end of the step (a friction law's
+                                    # memory state, solver.friction); None: Coulomb's constant mu
 
     @classmethod
     def initial(cls, shape) -> "StepState":
@@ -175,6 +177,13 @@ class StepParams:
     tangential: TangentialParams = field(default_factory=TangentialParams)
     coupling_tol: float = 1e-8
     max_outer: int = 30
+
+    def loosened(self, accuracy):
+        """The tangential parameters with their tolerance raised to `accuracy` when that is looser (None: as they
+        are): the inexact early solves of a friction law's iteration (solver.friction.iteration)."""
+        if accuracy is None or accuracy <= self.tangential.tol:
+            return self.tangential
+        return TangentialParams(tol=min(accuracy, 1e-3), max_iter=self.tangential.max_iter)
 
 
 @dataclass
@@ -189,16 +198,20 @@ class StepRecord:
     outer_iterations: int
     wall_time: float
     dissipation: float = 0.0      # frictional work of the step (N mm), solver.rolling.energy.frictional_work
+    friction: object = None       # with a friction law: its solver.friction.FrictionState (local mu, slip velocity)
 
 
 def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepParams(),
-             state: StepState | None = None) -> Iterator[StepRecord]:
+             state: StepState | None = None, friction=None) -> Iterator[StepRecord]:
     """Step along `path` from `state` (default: unloaded), yielding one StepRecord per step.
 
     op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.rolling.profiles;
     Fn (N) the normal force, constant unless the path carries one per step (`path.normal_forces`, checked here
     before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
-    carries the frictional work of its step (solver.rolling.energy.frictional_work). Raises ContactEdgeError if
+    carries the frictional work of its step (solver.rolling.energy.frictional_work). friction: a friction law
+    (solver.friction.LocalFriction; mu is then its static coefficient): each step is solved consistently with it
+    (solver.friction.transient.friction_step, the slip velocity over path.step_time) and its record carries the
+    FrictionState, its state the local coefficient. Raises ContactEdgeError if
     the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
     solver fails.
     """
@@ -215,23 +228,35 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
         t0 = time.perf_counter()
         centre = path.centres[n]
         h = profile(X, Y, centre)
-        guess = None
+        guess, cells = None, (0, 0)
         if state.step >= 0:
             # the pressure moves with the sphere: start the normal solve from the previous pressure
             # translated by the centre's move rounded to whole cells (exact when dW is a multiple of dx;
             # a bilinear sub-cell shift smears the contact edge and measured worse: 10.0 vs 9.0 it/step)
             move = centre - path.centres[state.step]
-            guess = shifted_field(state.pressure, round(move[1] / grid.dy), round(move[0] / grid.dx))
-        normal, tangential, outer = solve_coupled_step(
-            op, h, Fn if path.normal_forces is None else path.normal_forces[n], path.forces[n], state.pressure,
-            state.traction, mu=mu,
-            normal_params=params.normal, tangential_params=params.tangential,
-            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess)
+            cells = (round(move[1] / grid.dy), round(move[0] / grid.dx))
+            guess = shifted_field(state.pressure, *cells)
+        Fn_n = Fn if path.normal_forces is None else path.normal_forces[n]
+        if friction is None:
+            normal, tangential, outer = solve_coupled_step(
+                op, h, Fn_n, path.forces[n], state.pressure, state.traction, mu=mu,
+                normal_params=params.normal, tangential_params=params.tangential,
+                coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess)
+            local = None
+        else:
+            normal, tangential, outer, local = friction.step(
+                lambda m, tau0, p0, accuracy, previous=state, h=h, F=path.forces[n], Fn_n=Fn_n, guess=guess:
+                solve_coupled_step(op, h, Fn_n, F, previous.pressure, previous.traction, mu=m,
+                                   normal_params=params.normal, tangential_params=params.loosened(accuracy),
+                                   coupling_tol=params.coupling_tol, max_outer=params.max_outer,
+                                   pressure_guess=guess if p0 is None else p0, initial_traction=tau0),
+                op=op, dt=path.step_time, previous_mu=state.mu, moved=cells)
         check_contact_inside(normal.contact, n, centre)
         state = StepState(n, normal.pressure, tangential.traction,
-                          state.rigid_shift + tangential.shift_increment, normal.approach)
+                          state.rigid_shift + tangential.shift_increment, normal.approach,
+                          None if local is None else local.mu)
         work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
-        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work)
+        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, local)
 
 
 def shifted_field(field, rows, cols):
