@@ -37,3 +37,20 @@ def friction_fields(state) -> dict:
     if state.temperatures is not None:
         out.update(T1=state.temperatures.T1, T2=state.temperatures.T2)
     return out
+
+
+def friction_lines(summary: dict) -> list[str]:
+    """The lines `rollcontact run` prints for a run with a friction law or temperatures (none otherwise)."""
+    if "friction_law" not in summary:
+        return []
+    lines = [f"friction: {summary['friction_law']} (mu_static = {summary['mu_static']:.6g}: the mu of f_t and u)"
+             + (f"; frictional power {summary['frictional_power']:.6g} W" if "frictional_power" in summary else "")]
+    if "T1_max" in summary:
+        lines.append(f"surface temperatures: T1_max = {summary['T1_max']:.5g} degC (body 1), T2_max = "
+                     f"{summary['T2_max']:.5g} degC (body 2)")
+    feedback = summary.get("friction_feedback")
+    if feedback is not None and feedback >= 1.0:
+        lines.append(f"note: falling friction steeper than the elements' own stiffness (feedback {feedback:.3g} >= 1): "
+                     "the quasi-static problem may have several solutions and this is one of them; compare with "
+                     "friction memory (memory_distance) or the transient (docs/friction.md)")
+    return lines

@@ -10,7 +10,7 @@ import numpy as np
 
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
-from rollcontact.cases.run.friction_outputs import friction_summary
+from rollcontact.cases.run.friction_outputs import friction_lines, friction_summary
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.shakedown import SETTLED_STATES, classify, cyclic_slip
 from rollcontact.solver.rolling.stepping import LoadPath
@@ -134,6 +134,7 @@ def format_summary(result: RunResult) -> str:
         lines.append(f"sideways (across Ft): U_perp = {s['U_perp']:.6f} mm{walk}")
     if s.get("dissipation_per_period") is not None and d.scene.oscillating:
         lines.append(f"frictional work of the last period: {s['dissipation_per_period']:.6g} N mm")
+    lines += friction_lines(s)
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:
@@ -163,6 +164,7 @@ def _format_creep(d: RunResult) -> str:
                          f"N, F_y = {s['F_y_steady']:.6g} N, M_z = {s['M_z_steady']:.6g} N mm"
                          + (f", xi = {s['xi_steady']:.6g}, eta = {s['eta_steady']:.6g}" if s['forces_prescribed']
                             else ""))
+        lines += friction_lines(s)
     else:
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:

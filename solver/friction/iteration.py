@@ -9,9 +9,11 @@ relation, mu <- mu + omega (T - mu) / (1 - J), with J = dT/dmu the element's fee
 slipping element whose bound rises by p dmu slips less by a_self p dmu (its self-influence), so J = -T'(s) a_self p /
 dt >= 0 for falling friction (per unit rolled distance and V in steady rolling). J -> 1 is where the element's
 quasi-static problem stops having a unique solution (Vollebregt & Schuttelaars 2012): the gain 1/(1 - J) is capped at
-`max_gain`, and omega is halved whenever the residual grows (a safeguard against the coupling between elements,
-which the diagonal leaves out). Stops when max |T - mu| <= tol mu_static; ConvergenceError after max_iter iterates,
-naming the law, the largest feedback and the number of elements with J >= 1.
+`max_gain`. The coupling between elements, which the diagonal leaves out, is taken up by Anderson's acceleration
+(stepped solves, `consistent_coefficient`) or by the Gauss-Seidel sweeps themselves (steady rolling,
+solver.friction.steady), and safeguarded by a relaxation omega per element (`CoefficientUpdate`). Stops when
+max |T - mu| <= tol mu_static; ConvergenceError after max_iter iterates, naming the law, the largest feedback and the
+number of elements with J >= 1.
 """
 from __future__ import annotations
 
@@ -54,35 +56,53 @@ class Consistent:
 
 
 class CoefficientUpdate:
-    """The safeguarded update of the coefficient field towards the law's (module docstring): `step(mu, T, J)` returns
-    the next iterate and keeps the relaxation omega (halved when the residual grew, raised by a quarter back towards 1
-    when it fell); `residual` is the last max |T - mu| / mu_static."""
+    """The safeguarded update of the coefficient field towards the law's (module docstring).
+
+    `observe(mu, T)` records the residual T - mu of an iterate and adapts a relaxation omega per element: halved when
+    the element's residual changed sign since the last iterate (its iterates oscillate about its consistent value),
+    raised by a quarter up to OMEGA_MAX while the sign holds (they approach, or are chased by, that value from one
+    side). `step(mu, T, J)` is then mu + omega (T - mu) / (1 - J). `residual` is the last max |T - mu| / mu_static."""
 
     def __init__(self, mu_static, bounds, params: FrictionParams):
         self.mu_static, self.bounds, self.params = mu_static, bounds, params
         self.cap = 1.0 - 1.0 / params.max_gain
-        self.omega, self.residual = 1.0, math.inf
+        self.residual = math.inf
+        self.omega = None
+        self._sign = None
 
-    def converged(self, mu, T) -> bool:
+    def observe(self, mu, T) -> bool:
         """Records the residual of T against mu; True when it is within tol."""
-        previous, self.residual = self.residual, float(np.max(np.abs(T - mu))) / self.mu_static
-        if self.residual > previous:
-            self.omega = max(self.omega / 2.0, 1.0 / 16.0)
+        change = T - mu
+        self.residual = float(np.max(np.abs(change))) / self.mu_static
+        sign = np.sign(change)
+        if self.omega is None:
+            self.omega = np.ones_like(mu)
         else:
-            self.omega = min(1.0, 1.25 * self.omega)
+            flip, hold = sign * self._sign < 0, sign * self._sign > 0
+            self.omega = np.where(flip, np.maximum(OMEGA_MIN, 0.5 * self.omega),
+                                  np.where(hold, np.minimum(OMEGA_MAX, 1.25 * self.omega), self.omega))
+        self._sign = sign
         return self.residual <= self.params.tol
 
+    def newton(self, mu, T, J) -> np.ndarray:
+        """mu + (T - mu) / (1 - J), J clipped to [0, 1 - 1/max_gain], within the law's bounds."""
+        return np.clip(mu + (T - mu) / (1.0 - np.clip(J, 0.0, self.cap)), *self.bounds)
+
     def step(self, mu, T, J) -> np.ndarray:
-        """The next coefficient field: mu + omega (T - mu) / (1 - J), J clipped to [0, 1 - 1/max_gain], kept within
-        the law's bounds."""
+        """The relaxed Newton step mu + omega (T - mu) / (1 - J) (class docstring), within the law's bounds."""
         return np.clip(mu + self.omega * (T - mu) / (1.0 - np.clip(J, 0.0, self.cap)), *self.bounds)
 
     def back_off(self):
-        self.omega = max(self.omega / 2.0, 1.0 / 16.0)
+        if self.omega is not None:
+            self.omega = np.maximum(OMEGA_MIN, 0.5 * self.omega)
 
 
-#: Iterates kept by the Anderson acceleration of `consistent_coefficient`.
+#: Range of the relaxation of an element's step (CoefficientUpdate).
+OMEGA_MIN, OMEGA_MAX = 1.0 / 1024.0, 4.0
+#: Iterates kept by the Anderson acceleration of `consistent_coefficient`, and the iterates whose residual grew after
+#: which it stops for the rest of the solve.
 ANDERSON_DEPTH = 5
+ACCELERATION_TROUBLES = 2
 #: The solve after an iterate with residual r (relative to mu_static) asks for the relative accuracy INEXACT r (never
 #: beyond its own tolerance): no iterate is solved much more accurately than its coefficient is known.
 INEXACT = 1e-2
@@ -91,21 +111,25 @@ INEXACT = 1e-2
 def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: FrictionParams, regime) -> Consistent:
     """Iterate mu until the law's coefficient of the solution is mu (module docstring).
 
-    solve(mu) -> solution; target(solution, mu) -> (T, J) arrays of mu's shape; mu0 the first coefficient field;
-    bounds = (lowest, highest) coefficient the law can give (iterates are kept inside); regime(J) -> str for the
-    error message. The element-wise Newton steps are combined by Anderson's acceleration over the last
+    solve(mu, accuracy) -> solution (accuracy: a relative tolerance the solve may stop at, looser than its own, or
+    None); target(solution, mu) -> (T, J) arrays of mu's shape; mu0 the first coefficient field; bounds = (lowest,
+    highest) coefficient the law can give (iterates are kept inside); regime(J) -> str for the error message.
+
+    While the residual falls, the element-wise Newton steps are combined by Anderson's acceleration over the last
     ANDERSON_DEPTH iterates (Walker & Ni 2011: the coupling between neighbouring slipping elements, which the
-    element-wise steps leave out, otherwise converges linearly at rates of 0.8-0.9); when the residual grows, the
-    history is dropped and the plain step is damped (CoefficientUpdate). A solve that finds the force beyond the
-    capacity of the current coefficients (GrossSlidingError) is retried from halfway back to the last coefficients
-    that carried it; if the law's own coefficients cannot carry it either, that GrossSlidingError is raised."""
+    element-wise steps leave out, otherwise converges linearly at rates of 0.8-0.9); after an iterate whose residual
+    grew, and for good after ACCELERATION_TROUBLES of them, the step is the relaxed one of CoefficientUpdate (elements
+    at the stick/slip boundary that swap between stick and slip are damped until they settle). The early solves are inexact (INEXACT), the last one to the
+    solver's tolerance. A solve that finds the force beyond the capacity of the current coefficients
+    (GrossSlidingError) is retried from halfway back to the last coefficients that carried it; if the law's own
+    coefficients cannot carry it either, that GrossSlidingError is raised."""
     update = CoefficientUpdate(mu_static, bounds, params)
     mu = np.clip(np.array(mu0, dtype=float), *bounds)
     carried, failures = None, 0
     J = np.zeros_like(mu)
     history = []          # (g, f) of earlier iterates: the Newton step's result g and its change f = g - mu
+    troubles = 0 if ANDERSON_DEPTH > 0 else ACCELERATION_TROUBLES
     for k in range(1, params.max_iter + 1):
-        # inexact solves while the coefficient is far from consistent: the solve's tolerance follows the residual
         accuracy = None if not math.isfinite(update.residual) else INEXACT * update.residual
         try:
             solution = solve(mu, accuracy)
@@ -120,22 +144,25 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
         carried = mu.copy()
         T, J = target(solution, mu)
         previous = update.residual
-        if update.converged(mu, T):
+        if update.observe(mu, T):
             if accuracy is not None and accuracy > params.tol:
                 update.residual = accuracy       # confirm with a solve to the full tolerance
                 continue
             return Consistent(mu, solution, k, update.residual, J)
-        if update.residual > previous:
+        grew = update.residual >= previous
+        troubles += grew
+        if grew or troubles >= ACCELERATION_TROUBLES:
             history.clear()
             mu = update.step(mu, T, J)
             continue
-        g = np.clip(mu + (T - mu) / (1.0 - np.clip(J, 0.0, update.cap)), *bounds)
+        g = update.newton(mu, T, J)
         history.append((g, g - mu))
         del history[:-(ANDERSON_DEPTH + 1)]
         mu = g
         if len(history) > 1:
-            dG = np.stack([b[0] - a[0] for a, b in zip(history[:-1], history[1:])], axis=-1).reshape(-1, len(history) - 1)
-            dF = np.stack([b[1] - a[1] for a, b in zip(history[:-1], history[1:])], axis=-1).reshape(-1, len(history) - 1)
+            n = len(history) - 1
+            dG = np.stack([b[0] - a[0] for a, b in zip(history[:-1], history[1:])], axis=-1).reshape(-1, n)
+            dF = np.stack([b[1] - a[1] for a, b in zip(history[:-1], history[1:])], axis=-1).reshape(-1, n)
             gamma = np.linalg.lstsq(dF, history[-1][1].ravel(), rcond=None)[0]
             mu = np.clip(g - (dG @ gamma).reshape(g.shape), *bounds)
     raise ConvergenceError("slip-velocity iteration (friction law) did not converge", solver="friction",

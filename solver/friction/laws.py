@@ -111,6 +111,19 @@ class FrictionLaw:
             return np.zeros(s.shape)
         return self._dterm(self.mu_1, self.s_1, s, 1) + self._dterm(self.mu_2, self.s_2, s, 2)
 
+    def steepest_slope(self) -> float:
+        """The steepest fall |d mu / d s| (1/(mm/s)): the sum of each term's (at s = 0 for the linear, exponential and
+        first rational terms, at s = s_2/sqrt(3) for the second rational term), exact for one term and an upper bound
+        for two; 0 for Coulomb and the temperature law."""
+        if not self.velocity_dependent:
+            return 0.0
+        terms = []
+        for size, scale, which in ((self.mu_1, self.s_1, 1), (self.mu_2, self.s_2, 2)):
+            if size > 0:
+                x = 1.0 / math.sqrt(3.0) if (self.kind == "rational" and which == 2) else 0.0
+                terms.append(abs(float(self._dterm(size, scale, np.array(x * scale), which))))
+        return sum(terms)
+
     def _term(self, size, scale, s, which):
         if size == 0.0:
             return 0.0

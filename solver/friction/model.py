@@ -65,11 +65,15 @@ class FrictionState:
     """With a friction law, a solve also gives: `mu` the local coefficient (ny, nx) that bounds its traction (the
     memory state at its end), `slip_velocity` (mm/s, (ny, nx)), the solves of the slip-velocity iteration
     (`iterations`), the frictional power (W), with temperatures `temperatures` (solver.friction.thermal), and the
-    largest feedback J of an element on its own coefficient (`feedback`; solver.friction.iteration)."""
+    uniqueness indicator `feedback`: max |d mu/d s| of the law times a_self p_max / dt (stepped) or b p_max V (steady),
+    the largest feedback J an element can have on its own coefficient (solver.friction.iteration): below 1 every
+    element's own relation has one solution; at and above 1 the quasi-static problem may have several (Vollebregt &
+    Schuttelaars 2012), and the answer found is one of them (docs/friction.md); memory lowers it."""
 
     mu: np.ndarray
     slip_velocity: np.ndarray
     iterations: int
     power: float
     temperatures: object | None = None
-    feedback: float = 0.0     # the largest element feedback J of the iteration (>= 1: see solver.friction.iteration)
+    feedback: float = 0.0     # the steepest fall of the law times the element's own slip per unit bound, at the
+                              # largest pressure: >= 1 where the quasi-static problem may have several solutions

@@ -69,7 +69,7 @@ def solve_steady_friction(problem: SteadyRolling, pressure, friction: LocalFrict
 
     def bound_update(slip, traction, stick):
         T, state["J"] = target(slip, traction, stick)
-        if update.converged(state["mu"], T):
+        if update.observe(state["mu"], T):
             return None
         state["mu"] = update.step(state["mu"], T, state["J"])
         state["updates"] += 1
@@ -86,6 +86,7 @@ def solve_steady_friction(problem: SteadyRolling, pressure, friction: LocalFrict
     s = np.where(contact, (V if V is not None else 0.0) * np.hypot(res.slip[0], res.slip[1]), 0.0)
     flux = frictional_flux(res.traction, s)
     temps = thermal.solve(flux, contact) if thermal is not None else None
-    res.friction = FrictionState(state["mu"], s, state["updates"], float(flux.sum()) * grid.cell_area, temps,
-                                 float(np.max(state["J"], initial=0.0)))
+    # the uniqueness indicator: the steepest fall of the law against the element's own slip per bound
+    feedback = law.steepest_slope() * (V or 0.0) * b * float(pressure.max())
+    res.friction = FrictionState(state["mu"], s, state["updates"], float(flux.sum()) * grid.cell_area, temps, feedback)
     return res

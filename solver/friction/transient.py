@@ -80,8 +80,9 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
     s = velocity(tang)
     flux = frictional_flux(tang.traction, s)
     temps = thermal.solve(flux, normal.contact) if thermal is not None else None
-    state = FrictionState(done.mu, s, done.iterations, float(flux.sum()) * grid.cell_area, temps,
-                          float(np.max(done.feedback, initial=0.0)))
+    # the uniqueness indicator: the steepest fall of the law against the stiffest element's own slip per bound
+    feedback = law.steepest_slope() * self_coefficient * float(normal.pressure.max()) / dt if dt else 0.0
+    state = FrictionState(done.mu, s, done.iterations, float(flux.sum()) * grid.cell_area, temps, feedback)
     return normal, tang, outer, state
 
 
