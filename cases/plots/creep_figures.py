@@ -37,8 +37,10 @@ def is_creep_run(data) -> bool:
 def plot_creep_run(data, out_dir, stem, overwrite=False):
     """Maps of a steady rolling run (stem_maps.png/.pdf): the traction magnitude |tau|/(mu p_max) with the slip
     direction, and stick (at the leading edge) and slip regions; x along the rolling direction (arrow). A transient
-    run: its last stored step, around the contact."""
+    run: its last stored step, around the contact. With a friction law or [thermal], also stem_friction (the local
+    mu, slip velocity and temperatures, cases.plots.friction_figures)."""
     s = data.summary
+    keep = slice(None)
     if not len(data.field_steps):
         from rollcontact.cases.plots.common import PlotError
         raise PlotError(f"{data.path}: this [rolling] run stored no fields (output.fields = 'none'): no maps to draw")
@@ -74,4 +76,7 @@ def plot_creep_run(data, out_dir, stem, overwrite=False):
                     arrowprops=dict(arrowstyle="->", color="k"), annotation_clip=False)
     fig.suptitle(f"{s['mode']} rolling: xi = {s['xi']:.4g}, eta = {s['eta']:.4g}, phi = {s['phi']:.4g} 1/mm; "
                  f"F_x = {s['F_x']:.4g} N, F_y = {s['F_y']:.4g} N (on the sphere)", fontsize=10)
-    return save_figure(fig, out_dir, f"{stem}_maps", overwrite=overwrite)
+    paths = save_figure(fig, out_dir, f"{stem}_maps", overwrite=overwrite)
+    from rollcontact.cases.plots.friction_figures import plot_friction      # a law's mu, slip velocity, temperatures
+    window = keep if s.get("state") == "transient" else None
+    return paths + plot_friction(data, out_dir, stem, window=window, overwrite=overwrite)

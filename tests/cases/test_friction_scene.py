@@ -127,3 +127,6 @@ def test_a_steady_run_with_temperatures_writes_them_and_their_maxima(tmp_path):
     assert T1[:, -1] == pytest.approx(20.0, abs=1e-6) and T2[:, -1] == pytest.approx(40.0, abs=1e-6)   # ahead: bulk
     assert res.summary["frictional_power"] > 0
     assert back.history["time"] == pytest.approx([0.0])
+    from rollcontact.cases.cli.main import main
+    assert main(["plot", str(tmp_path / "hot.h5"), "-o", str(tmp_path / "figures")]) == 0
+    assert (tmp_path / "figures" / "hot_friction.png").stat().st_size > 10_000
