@@ -112,6 +112,46 @@ def element_response(X, Y, hx, hy, c, chunk=2048) -> np.ndarray:
     return (out / (4.0 * math.sqrt(math.pi))).reshape(X.shape)
 
 
+#: Panels of the grid rule (`grid_response`) in the diffusion length u: at most this ratio per panel (log spacing)...
+_LOG_RATIO = 1.25
+#: ... and at most this many times 1/c wide (the heat of a cell passes under a point behind it over du ~ 6/c).
+_PANEL_C = 2.0
+
+
+def grid_response(x, y, hx, hy, c) -> np.ndarray:
+    """G at every offset (X, Y) of the 1-D arrays x (mm, along the motion) and y (mm): the same integral as
+    `element_response`, shape (len(y), len(x)), by one Gauss-Legendre rule in the diffusion length u shared by all
+    offsets, on which the integrand separates, [erf-difference in X](u) x [erf-difference in Y](u): a matrix product
+    of a (len(y), n_u) by an (n_u, len(x)) array. The panels are logarithmic in u (ratio _LOG_RATIO) and at most
+    _PANEL_C / c wide, from u_cut = min(_U_CUT min(hx, hy), 0.1 sqrt(2 min(hx, hy) / c)) (below it only the element
+    under the point is heated, 4 u_cut in closed form) to where c u/2 - max|X|/u exceeds 7.5 (no heat arrives later); without motion the far field
+    16 hx hy / (pi u^2) is added in closed form beyond u = 1e6 max(|X|, |Y|, hx, hy). Offsets on element edges are
+    not allowed (grid offsets never are). Agrees with `element_response` to 1e-9 of the element's own value (tested).
+    """
+    from scipy.special import erfc
+    x, y = np.asarray(x, dtype=float), np.abs(np.asarray(y, dtype=float))
+    reach = max(float(np.max(np.abs(x))), float(np.max(y)), hx, hy)
+    if 2.0 * c * hx < 1e-20:
+        c = 0.0
+    # below u_cut the element under the point alone is heated, and it fully: u_cut well below the time its own heat
+    # takes to pass, sqrt(2 hx / c)
+    u_cut = min(_U_CUT * min(hx, hy), 0.1 * math.sqrt(2.0 * min(hx, hy) / c) if c > 0 else math.inf)
+    u_end = (7.5 + math.sqrt(56.25 + 2.0 * c * (reach + hx))) / c if c > 0 else 1e6 * reach
+    edges = [u_cut]
+    while edges[-1] < u_end:
+        step = (_LOG_RATIO - 1.0) * edges[-1]
+        edges.append(edges[-1] + (min(step, _PANEL_C / c) if c > 0 else step))
+    u, w = _panels(np.array(edges))
+    ex = _erf_difference((x[:, None] + hx) / u + 0.5 * c * u, (x[:, None] - hx) / u + 0.5 * c * u, erfc)
+    ey = _erf_difference((y[:, None] + hy) / u, (y[:, None] - hy) / u, erfc)
+    G = (ey * w) @ ex.T
+    own = (np.abs(x)[None, :] < hx) & (y[:, None] < hy)        # the element under the point: 4 u_cut below u_cut
+    G += np.where(own, 4.0 * u_cut, 0.0)
+    if c * edges[-1] < 15.0:                                   # the far field beyond the last panel
+        G += 16.0 * hx * hy / (math.pi * edges[-1]) * math.exp(-(0.5 * c * edges[-1]) ** 2)
+    return G / (4.0 * math.sqrt(math.pi))
+
+
 @dataclass(frozen=True)
 class ThermalBody:
     """Thermal constants of one body: conductivity k (W/(mm K)), diffusivity kappa (mm^2/s)."""
@@ -150,7 +190,7 @@ class MovingHeatSource:
         ny, nx = grid.shape
         ox, oy = np.arange(-(nx - 1), nx) * grid.dx, np.arange(0, ny) * grid.dy
         c = self.speed / (2.0 * body.diffusivity)
-        half = element_response(ox[None, :], oy[:, None], 0.5 * grid.dx, 0.5 * grid.dy, c) / body.conductivity
+        half = grid_response(ox, oy, 0.5 * grid.dx, 0.5 * grid.dy, c) / body.conductivity
         #: influence coefficients (K per W/mm^2), shape (2 ny - 1, 2 nx - 1), offset (0, 0) at [ny - 1, nx - 1]
         self.kernel = np.concatenate([half[:0:-1], half])
         self._shape = (fft.next_fast_len(2 * ny - 1, real=True), fft.next_fast_len(2 * nx - 1, real=True))

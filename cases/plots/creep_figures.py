@@ -21,10 +21,14 @@ def plot_curve(table, out_dir, stem, overwrite=False):
     ax.plot(fine[fine <= 1.2], fine[fine <= 1.2], "--", color="C1", label="Kalker's linear theory")
     ax.plot(fine, vermeulen_johnson(fine), ":", color="C2", label="Vermeulen-Johnson")
     ax.axhline(1.0, color="0.6", lw=0.8)
+    if getattr(table, "lowest_ratio", None) is not None and table.lowest_ratio < 1.0:   # a falling friction law
+        ax.axhline(table.lowest_ratio, color="C3", lw=0.8, ls="-.", label="mu_kin Fn (the law at high slip velocity)")
+
     unit = " (1/mm)" if table.varied == "phi" else ""
     ax.set_xlabel(f"{name} / saturation value ({table.saturation:.4g}{unit})")
     ax.set_ylabel(f"-{force} / (mu Fn)")
-    ax.set_title(f"creep-force curve over {table.varied}; mu Fn = {table.mu_fn:.4g} N", fontsize=10)
+    law = f"\n{table.law}" if getattr(table, "law", "") else ""
+    ax.set_title(f"creep-force curve over {table.varied}; mu Fn = {table.mu_fn:.4g} N{law}", fontsize=10)
     ax.legend(loc="lower right")
     return save_figure(fig, out_dir, stem, overwrite=overwrite)
 

@@ -21,9 +21,11 @@ import numpy as np
 from rollcontact.bem.errors import InputError, OutputExistsError
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
+from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, kalker_coefficients,
                                       saturation_creepage, vermeulen_johnson)
+from rollcontact.solver.friction import solve_steady_friction
 from rollcontact.solver.normal import NormalParams, solve_normal
 
 #: The creepage varied -> (index in (xi, eta, phi), force component, Kalker coefficient index)
@@ -39,6 +41,8 @@ class CurveTable:
     saturation: float
     rows: list
     mu_fn: float
+    law: str = ""                  # a friction law in words (mu_fn then uses its static coefficient)
+    lowest_ratio: float | None = None   # the law's lowest coefficient over its static one (mu_kin / mu_static)
 
 
 def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTable:
@@ -70,17 +74,46 @@ def compute_curve(scene: Scene, varied: str = "xi", fractions=None) -> CurveTabl
                                      normal.force)
     creep = np.zeros((len(fractions), 3))
     creep[:, index] = fractions * saturation
+    friction = local_friction(scene, grid)      # a friction law or [thermal]: None without them
+    states = []
     curve = creep_curve(SteadyRolling(grid, pair, coupled=False, operator=op), normal.pressure, scene.load.mu, creep,
-                        params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)))
+                        params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)),
+                        **({} if friction is None else {"solve": _law_solver(friction, states)}))
     ratio = -curve.force[:, component] / mu_fn
     rows = [dict(zip(COLUMNS, (creep[k, index], fractions[k], curve.force[k, 0], curve.force[k, 1],
                                curve.moment[k], ratio[k], fractions[k], float(vermeulen_johnson(fractions[k])),
                                curve.stick_fraction[k], int(curve.sweeps[k])))) for k in range(len(fractions))]
-    return CurveTable(varied, saturation, rows, mu_fn)
+    for row, state in zip(rows, states):
+        row.update(_friction_columns(state, normal.pressure > 0))
+    law = friction.law if friction is not None else None
+    return CurveTable(varied, saturation, rows, mu_fn, "" if law is None else law.describe(),
+                      None if law is None else law.mu_lowest / law.mu_static)
+
+
+def _law_solver(friction, states):
+    """solve_steady's stand-in for a friction law: each point warm-started from the coefficient field of the one
+    before, its FrictionState appended to `states`."""
+    def solve(problem, pressure, mu, xi, eta, phi, *, initial=None, params=None):
+        res = solve_steady_friction(problem, pressure, friction, xi, eta, phi, initial=initial,
+                                    mu_initial=states[-1].mu if states else None, params=params)
+        states.append(res.friction)
+        return res
+    return solve
+
+
+def _friction_columns(state, contact) -> dict:
+    """The columns a friction law adds: the lowest local mu in the contact, the largest slip velocity (mm/s), the
+    frictional power (W) and, with temperatures, the largest surface temperature (degC)."""
+    out = {"mu_min": float(state.mu[contact].min()), "slip_velocity_max": float(state.slip_velocity.max()),
+           "frictional_power": state.power}
+    if state.temperatures is not None:
+        out["T_max"] = float(max(state.temperatures.T1.max(), state.temperatures.T2.max()))
+    return out
 
 
 def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
-    """The curve as CSV (header: COLUMNS; a comment line first with the units and the saturation creepage),
+    """The curve as CSV (header: COLUMNS, and with a friction law mu_min, slip_velocity_max (mm/s), frictional_power
+    (W) and with temperatures T_max (degC); a comment line first with the units and the saturation creepage),
     through a temporary file renamed into place; an existing file only with `overwrite`."""
     path = Path(path)
     if path.exists() and not overwrite:
@@ -90,8 +123,9 @@ def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
     unit = "1/mm" if table.varied == "phi" else "-"
     with open(tmp, "w", newline="") as fh:
         fh.write(f"# creep-force curve over {table.varied} ({unit}); saturation creepage {table.saturation:.6g} "
-                 f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
-        writer = csv.DictWriter(fh, fieldnames=COLUMNS)
+                 f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)"
+                 + (f"; friction law {table.law} (mu = its static coefficient)" if table.law else "") + "\n")
+        writer = csv.DictWriter(fh, fieldnames=list(table.rows[0]) if table.rows else COLUMNS)
         writer.writeheader()
         for row in table.rows:
             writer.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})

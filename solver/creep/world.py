@@ -147,11 +147,10 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
             local = None
         else:
             normal, tang, outer, local = friction.step(
-                lambda m, tau0, p0, accuracy: solve_coupled_step(
+                lambda m, last, accuracy: solve_coupled_step(
                     op, h, Fn, F, p_prev, tau_prev, mu=m, normal_params=params.normal,
                     tangential_params=params.loosened(accuracy), coupling_tol=params.coupling_tol,
-                    max_outer=params.max_outer, pressure_guess=guess if p0 is None else p0, initial_traction=tau0,
-                    **kw),
+                    max_outer=params.max_outer, **last.warm_start(guess), **kw),
                 op=op, dt=step / friction.speed if friction.speed else None,
                 previous_mu=None if previous is None else previous.friction.mu,
                 moved=(0, 0) if previous is None else (0, round((centre - previous.centre) / grid.dx)))

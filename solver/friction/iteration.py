@@ -12,7 +12,8 @@ quasi-static problem stops having a unique solution (Vollebregt & Schuttelaars 2
 `max_gain`. The coupling between elements, which the diagonal leaves out, is taken up by Anderson's acceleration
 (stepped solves, `consistent_coefficient`) or by the Gauss-Seidel sweeps themselves (steady rolling,
 solver.friction.steady), and safeguarded by a relaxation omega per element (`CoefficientUpdate`). Stops when
-max |T - mu| <= tol mu_static; ConvergenceError after max_iter iterates, naming the law, the largest feedback and the
+max |T - mu| p / p_max <= tol mu_static (the bound's inconsistency relative to the largest bound);
+ConvergenceError after max_iter iterates, naming the law, the largest feedback and the
 number of elements with J >= 1.
 """
 from __future__ import annotations
@@ -70,10 +71,12 @@ class CoefficientUpdate:
         self.omega = None
         self._sign = None
 
-    def observe(self, mu, T) -> bool:
-        """Records the residual of T against mu; True when it is within tol."""
+    def observe(self, mu, T, weight=None) -> bool:
+        """Records the residual of T against mu, max |T - mu| weight / mu_static (weight: p / p_max, so that the
+        residual is the inconsistency of the traction bound relative to the largest, as the contact solvers measure
+        theirs; None: 1); True when it is within tol."""
         change = T - mu
-        self.residual = float(np.max(np.abs(change))) / self.mu_static
+        self.residual = float(np.max(np.abs(change if weight is None else change * weight))) / self.mu_static
         sign = np.sign(change)
         if self.omega is None:
             self.omega = np.ones_like(mu)
@@ -112,7 +115,7 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     """Iterate mu until the law's coefficient of the solution is mu (module docstring).
 
     solve(mu, accuracy) -> solution (accuracy: a relative tolerance the solve may stop at, looser than its own, or
-    None); target(solution, mu) -> (T, J) arrays of mu's shape; mu0 the first coefficient field; bounds = (lowest,
+    None); target(solution, mu) -> (T, J, weight) arrays of mu's shape (weight: p / p_max, CoefficientUpdate.observe); mu0 the first coefficient field; bounds = (lowest,
     highest) coefficient the law can give (iterates are kept inside); regime(J) -> str for the error message.
 
     While the residual falls, the element-wise Newton steps are combined by Anderson's acceleration over the last
@@ -142,13 +145,14 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
             history.clear()
             continue
         carried = mu.copy()
-        T, J = target(solution, mu)
+        T, J, weight = target(solution, mu)
         previous = update.residual
-        if update.observe(mu, T):
+        if update.observe(mu, T, weight):
             if accuracy is not None and accuracy > params.tol:
                 update.residual = accuracy       # confirm with a solve to the full tolerance
                 continue
-            return Consistent(mu, solution, k, update.residual, J)
+            # where nothing presses (weight 0) the coefficient bounds nothing: it is the law's (the memory state)
+            return Consistent(np.where(weight > 0, mu, T), solution, k, update.residual, J)
         grew = update.residual >= previous
         troubles += grew
         if grew or troubles >= ACCELERATION_TROUBLES:

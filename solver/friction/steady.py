@@ -47,7 +47,9 @@ def solve_steady_friction(problem: SteadyRolling, pressure, friction: LocalFrict
     mu_static = law.mu_static
     b = upwind_self_coefficient(problem)
     update = CoefficientUpdate(mu_static, friction.bounds, friction.params)
-    state = {"mu": np.full(grid.shape, mu_static) if mu_initial is None else np.array(mu_initial, dtype=float),
+    weight = pressure / pressure.max()
+    start = law.mu if law.kind == "coulomb" else mu_static
+    state = {"mu": np.full(grid.shape, start) if mu_initial is None else np.array(mu_initial, dtype=float),
              "J": np.zeros(grid.shape), "updates": 0}
 
     def velocity(slip):
@@ -69,7 +71,8 @@ def solve_steady_friction(problem: SteadyRolling, pressure, friction: LocalFrict
 
     def bound_update(slip, traction, stick):
         T, state["J"] = target(slip, traction, stick)
-        if update.observe(state["mu"], T):
+        if update.observe(state["mu"], T, weight):
+            state["mu"] = np.where(contact, state["mu"], T)     # outside the contact: the law's (memory) value
             return None
         state["mu"] = update.step(state["mu"], T, state["J"])
         state["updates"] += 1
@@ -78,7 +81,8 @@ def solve_steady_friction(problem: SteadyRolling, pressure, friction: LocalFrict
     where = f"steady rolling at V = {V:.6g} mm/s" if V is not None else "steady rolling"
     try:
         res = solve_steady(problem, pressure, np.where(contact, state["mu"], mu_static), xi, eta, phi,
-                           initial=initial, params=params, bound_update=bound_update)
+                           initial=initial, params=params,
+                           bound_update=None if law.kind == "coulomb" else bound_update)  # Coulomb's: no update
     except ConvergenceError as exc:
         raise ConvergenceError("steady rolling with a friction law did not converge", solver="solve_steady_friction",
                                iterations=exc.iterations, residual=max(exc.residual or 0.0, update.residual),

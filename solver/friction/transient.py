@@ -18,14 +18,36 @@ from rollcontact.solver.friction.model import FrictionState, LocalFriction
 from rollcontact.solver.friction.thermal import frictional_flux
 
 
+class LastSolve:
+    """The previous solve of a step's iteration, as the warm start of the next (`warm_start`), and the products of
+    all its solves (the step's cost)."""
+
+    def __init__(self):
+        self.traction = self.pressure = self.region = None
+        self.normal_products = self.tangential_products = self.steps = 0
+
+    def record(self, normal, tangential):
+        self.traction, self.pressure, self.region = tangential.traction, normal.pressure, tangential.region
+        self.normal_products += normal.iterations
+        self.tangential_products += tangential.iterations
+        self.steps += tangential.steps
+
+    def warm_start(self, pressure_guess=None) -> dict:
+        """solve_coupled_step's warm-start arguments: the last traction with its stick/slip division (its slip
+        elements start on their new bound) and pressure; before the first solve, the step's own pressure guess."""
+        if self.traction is None:
+            return {"pressure_guess": pressure_guess}
+        return {"pressure_guess": self.pressure, "initial_traction": self.traction, "initial_region": self.region}
+
+
 def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self_coefficient, thermal=None,
                   moved=(0, 0)):
     """Solve one step consistently with the law: (normal, tangential, outer, FrictionState).
 
-    solve(mu, initial_traction, pressure_guess, accuracy) -> (NormalResult, TangentialResult, outer iterations): the
-    step's contact solve on `grid` (bem.Grid) with the coefficient field mu (ny, nx), warm-started from a traction
-    (2, ny, nx; None: the solver's own start) and a pressure (None: the step's own guess), to the relative accuracy
-    `accuracy` where that is looser than the solvers' tolerance (None: their tolerance). dt (s): the step's duration
+    solve(mu, last, accuracy) -> (NormalResult, TangentialResult, outer iterations): the step's contact solve on
+    `grid` (bem.Grid) with the coefficient field mu (ny, nx), warm-started from `last` (a LastSolve: its
+    warm_start(pressure_guess) gives solve_coupled_step's warm-start arguments), to the relative accuracy `accuracy`
+    where that is looser than the solvers' tolerance (None: their tolerance). dt (s): the step's duration
     (None without a speed: Coulomb and the temperature law need none). previous_mu: the coefficient field at the end
     of the previous step (None: mu_static everywhere, surfaces at rest). self_coefficient: the element's own
     tangential influence (mm/MPa). thermal: a solver.friction.thermal.ContactTemperature on the grid (temperatures;
@@ -36,14 +58,11 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
     shape = grid.shape
     mu_static = law.mu_static
     previous = np.full(shape, mu_static) if previous_mu is None else np.asarray(previous_mu, dtype=float)
-    last = {"traction": None, "pressure": None, "normal": 0, "tangential": 0, "steps": 0}
+    last = LastSolve()
 
     def run(mu, accuracy):
-        normal, tang, outer = solve(mu, last["traction"], last["pressure"], accuracy)
-        last["traction"], last["pressure"] = tang.traction, normal.pressure
-        last["normal"] += normal.iterations
-        last["tangential"] += tang.iterations
-        last["steps"] += tang.steps
+        normal, tang, outer = solve(mu, last, accuracy)
+        last.record(normal, tang)
         return normal, tang, outer
 
     def velocity(tang):
@@ -57,12 +76,12 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
             value, slope = law.coefficient(s), law.slope(s)
             T = memory.step(previous, value, s, dt)
             dT = memory.step_slope(previous, value, slope, s, dt)
-            return T, np.where(tang.region == 2, -dT * self_coefficient * p / dt, 0.0)
+            return T, np.where(tang.region == 2, -dT * self_coefficient * p / dt, 0.0), p / p.max()
         if law.temperature_dependent:
             temps = thermal.solve(frictional_flux(tang.traction, s), normal.contact)
             T = np.where(normal.contact, law.of_temperature(0.5 * (temps.T1 + temps.T2)), mu_static)
-            return T, np.zeros(shape)
-        return np.full(shape, law.mu), np.zeros(shape)
+            return T, np.zeros(shape), p / p.max()
+        return np.full(shape, law.mu), np.zeros(shape), p / p.max()
 
     if law.velocity_dependent and not memory.active and tuple(moved) != (0, 0):
         start = mu_static + _shifted(previous - mu_static, *moved)
@@ -75,8 +94,8 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
                                   params=friction.params, regime=lambda J: feedback_regime(law, J, where))
     normal, tang, outer = done.solution
     # the cost of the step: the products of every solve of the iteration
-    normal = replace(normal, iterations=last["normal"])
-    tang = replace(tang, iterations=last["tangential"], steps=last["steps"])
+    normal = replace(normal, iterations=last.normal_products)
+    tang = replace(tang, iterations=last.tangential_products, steps=last.steps)
     s = velocity(tang)
     flux = frictional_flux(tang.traction, s)
     temps = thermal.solve(flux, normal.contact) if thermal is not None else None

@@ -26,7 +26,7 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
                        coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None,
-                       initial_traction=None):
+                       initial_traction=None, initial_region=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -51,6 +51,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
         returned `displacement`.
     initial_traction : (2, ny, nx) MPa, a warm start of the tangential solve (default: the previous traction), e.g.
         the last iterate of a friction law's iteration (solver.friction.transient). Only the start changes.
+    initial_region : (ny, nx) int8, the stick/slip division of the solve that gave `initial_traction`
+        (solve_tangential's `previous_region`: its slip elements start on the new bound).
 
     Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
     with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
@@ -77,7 +79,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     if not op.coupled:
         normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
-                                initial=initial_traction, params=tangential_params)
+                                initial=initial_traction, previous_region=initial_region, params=tangential_params)
         if given is not None:
             tang = replace(tang, displacement=tang.displacement - given)
         return normal, tang, 1
@@ -96,7 +98,7 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
             extra = extra + given
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, initial=tau,
                                 extra_slip=extra,
-                                previous_region=None if outer == 1 else tang.region,
+                                previous_region=initial_region if outer == 1 else tang.region,
                                 params=tangential_params)
         n_products += normal.iterations
         t_products += tang.iterations

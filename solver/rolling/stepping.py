@@ -245,11 +245,11 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             local = None
         else:
             normal, tangential, outer, local = friction.step(
-                lambda m, tau0, p0, accuracy, previous=state, h=h, F=path.forces[n], Fn_n=Fn_n, guess=guess:
+                lambda m, last, accuracy, previous=state, h=h, F=path.forces[n], Fn_n=Fn_n, guess=guess:
                 solve_coupled_step(op, h, Fn_n, F, previous.pressure, previous.traction, mu=m,
                                    normal_params=params.normal, tangential_params=params.loosened(accuracy),
                                    coupling_tol=params.coupling_tol, max_outer=params.max_outer,
-                                   pressure_guess=guess if p0 is None else p0, initial_traction=tau0),
+                                   **last.warm_start(guess)),
                 op=op, dt=path.step_time, previous_mu=state.mu, moved=cells)
         check_contact_inside(normal.contact, n, centre)
         state = StepState(n, normal.pressure, tangential.traction,

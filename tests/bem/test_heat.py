@@ -97,3 +97,14 @@ def test_the_convolution_is_linear_not_periodic():
     ox = np.arange(-(grid.nx - 1), grid.nx) * grid.dx
     expected = element_response(ox[grid.nx - 1 + 29], 0.0, 0.1, 0.1, 100.0 / 28.0) / 0.05
     assert T[5, 29] == pytest.approx(float(expected), rel=1e-10)
+
+
+@pytest.mark.parametrize("c, h", [(0.0, 0.05), (0.05, 0.05), (10.0, 0.05), (1060.0, 0.125), (1e5, 0.1)])
+def test_the_grid_rule_is_the_element_response_at_every_grid_offset(c, h):
+    """MovingHeatSource builds its coefficients with `grid_response` (one rule in u for all offsets, a matrix
+    product); it must be the element response at every offset of the grid, from no motion to c dx = 2e4."""
+    from rollcontact.bem.heat import grid_response
+    n, m = 31, 17
+    x, y = np.arange(-(n - 1), n) * 2 * h, np.arange(0, m) * 2 * h
+    exact = element_response(x[None, :], y[:, None], h, h, c)
+    assert grid_response(x, y, h, h, c) == pytest.approx(exact, abs=1e-8 * exact[0, n - 1])

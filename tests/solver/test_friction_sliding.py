@@ -30,9 +30,8 @@ def slide(contact, friction, steps):
     p, tau, mu = None, np.zeros((2,) + op.grid.shape), None
     forces, means, iterations = [], [], []
     for dU, dt in steps:
-        def solve(m, tau0, p0, accuracy, p=p, tau=tau):
-            return solve_coupled_step(op, h, FN, None, p, tau, mu=m, shift=(dU, 0.0), initial_traction=tau0,
-                                      pressure_guess=p0)
+        def solve(m, last, accuracy, p=p, tau=tau):
+            return solve_coupled_step(op, h, FN, None, p, tau, mu=m, shift=(dU, 0.0), **last.warm_start())
         normal, tang, _, state = friction.step(solve, op=op, dt=dt, previous_mu=mu)
         p, tau, mu = normal.pressure, tang.traction, state.mu
         forces.append(tang.force[0])           # on the substrate: dragged along the sphere's shift
