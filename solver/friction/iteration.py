@@ -101,11 +101,13 @@ class CoefficientUpdate:
 
 
 #: Range of the relaxation of an element's step (CoefficientUpdate).
-OMEGA_MIN, OMEGA_MAX = 1.0 / 1024.0, 4.0
-#: Iterates kept by the Anderson acceleration of `consistent_coefficient`, and the iterates whose residual grew after
-#: which it stops for the rest of the solve.
+OMEGA_MIN, OMEGA_MAX = 1.0 / 1024.0, 1.5
+#: Iterates kept by the Anderson acceleration of `consistent_coefficient`, the iterates whose residual grew after
+#: which it stops...
 ANDERSON_DEPTH = 5
 ACCELERATION_TROUBLES = 2
+#: ... and the relaxed iterates with falling residual after which it resumes.
+RESUME_AFTER = 4
 #: The solve after an iterate with residual r (relative to mu_static) asks for the relative accuracy INEXACT r (never
 #: beyond its own tolerance): no iterate is solved much more accurately than its coefficient is known.
 INEXACT = 1e-2
@@ -115,23 +117,25 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     """Iterate mu until the law's coefficient of the solution is mu (module docstring).
 
     solve(mu, accuracy) -> solution (accuracy: a relative tolerance the solve may stop at, looser than its own, or
-    None); target(solution, mu) -> (T, J, weight) arrays of mu's shape (weight: p / p_max, CoefficientUpdate.observe); mu0 the first coefficient field; bounds = (lowest,
-    highest) coefficient the law can give (iterates are kept inside); regime(J) -> str for the error message.
+    None); target(solution, mu) -> (T, J, weight) arrays of mu's shape (weight: p / p_max, CoefficientUpdate.observe);
+    mu0 the first coefficient field; bounds = (lowest, highest) coefficient the law can give (iterates are kept inside);
+    regime(J) -> str for the error message.
 
     While the residual falls, the element-wise Newton steps are combined by Anderson's acceleration over the last
     ANDERSON_DEPTH iterates (Walker & Ni 2011: the coupling between neighbouring slipping elements, which the
     element-wise steps leave out, otherwise converges linearly at rates of 0.8-0.9); after an iterate whose residual
-    grew, and for good after ACCELERATION_TROUBLES of them, the step is the relaxed one of CoefficientUpdate (elements
-    at the stick/slip boundary that swap between stick and slip are damped until they settle). The early solves are inexact (INEXACT), the last one to the
-    solver's tolerance. A solve that finds the force beyond the capacity of the current coefficients
-    (GrossSlidingError) is retried from halfway back to the last coefficients that carried it; if the law's own
-    coefficients cannot carry it either, that GrossSlidingError is raised."""
+    grew, and after ACCELERATION_TROUBLES of them until RESUME_AFTER relaxed iterates in a row have lowered it, the
+    step is the relaxed one of CoefficientUpdate (elements at the stick/slip boundary that swap between stick and slip
+    are damped until they settle). The early solves are inexact (INEXACT), the last one to the solver's tolerance. A
+    solve that finds the force beyond the capacity of the current coefficients (GrossSlidingError) is retried from
+    halfway back to the last coefficients that carried it; if the law's own coefficients cannot carry it either,
+    that GrossSlidingError is raised."""
     update = CoefficientUpdate(mu_static, bounds, params)
     mu = np.clip(np.array(mu0, dtype=float), *bounds)
     carried, failures = None, 0
     J = np.zeros_like(mu)
     history = []          # (g, f) of earlier iterates: the Newton step's result g and its change f = g - mu
-    troubles = 0 if ANDERSON_DEPTH > 0 else ACCELERATION_TROUBLES
+    troubles, falling = (0 if ANDERSON_DEPTH > 0 else ACCELERATION_TROUBLES), 0
     for k in range(1, params.max_iter + 1):
         accuracy = None if not math.isfinite(update.residual) else INEXACT * update.residual
         try:
@@ -154,7 +158,9 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
             # where nothing presses (weight 0) the coefficient bounds nothing: it is the law's (the memory state)
             return Consistent(np.where(weight > 0, mu, T), solution, k, update.residual, J)
         grew = update.residual >= previous
-        troubles += grew
+        troubles, falling = (troubles + 1, 0) if grew else (troubles, falling + 1)
+        if troubles >= ACCELERATION_TROUBLES and falling >= RESUME_AFTER:
+            troubles = 0             # the relaxed steps have settled the swapping elements: accelerate again
         if grew or troubles >= ACCELERATION_TROUBLES:
             history.clear()
             mu = update.step(mu, T, J)
