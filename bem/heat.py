@@ -124,9 +124,9 @@ def grid_response(x, y, hx, hy, c) -> np.ndarray:
     offsets, on which the integrand separates, [erf-difference in X](u) x [erf-difference in Y](u): a matrix product
     of a (len(y), n_u) by an (n_u, len(x)) array. The panels are logarithmic in u (ratio _LOG_RATIO) and at most
     _PANEL_C / c wide, from u_cut = min(_U_CUT min(hx, hy), 0.1 sqrt(2 min(hx, hy) / c)) (below it only the element
-    under the point is heated, 4 u_cut in closed form) to where c u/2 - max|X|/u exceeds 7.5 (no heat arrives later); without motion the far field
-    16 hx hy / (pi u^2) is added in closed form beyond u = 1e6 max(|X|, |Y|, hx, hy). Offsets on element edges are
-    not allowed (grid offsets never are). Agrees with `element_response` to 1e-9 of the element's own value (tested).
+    under the point is heated, 4 u_cut in closed form) to where c u/2 - max|X|/u exceeds 7.5 (no heat arrives
+    later); without motion the far field 16 hx hy / (pi u^2) is added in closed form beyond u = 1e6 max(|X|, |Y|,
+    hx, hy). Offsets on element edges are not allowed (grid offsets never are). Agrees with `element_response` to 1e-9 of the element's own value (tested).
     """
     from scipy.special import erfc
     x, y = np.asarray(x, dtype=float), np.abs(np.asarray(y, dtype=float))

@@ -56,9 +56,9 @@ def check_friction(scene, data: dict):
             raise SceneError(f"[thermal] needs {', '.join(missing)} (W/(m K), kg/m^3, J/(kg K) of both bodies); "
                              f"given: {sorted(thermal_given)}")
         if not scene.rolling_on:
-            raise SceneError("[thermal] applies to [rolling] scenes (mode 'steady' or 'transient', with rolling.speed): "
-                             "the temperatures are those of a heat source moving steadily over both bodies; an "
-                             "oscillating or shift scene moves back and forth; remove [thermal]")
+            raise SceneError("[thermal] applies to [rolling] scenes (mode 'steady' or 'transient', with "
+                             "rolling.speed): the temperatures are those of a heat source moving steadily over both "
+                             "bodies; an oscillating or shift scene moves back and forth; remove [thermal]")
         if scene.speed is None:
             raise SceneError("[thermal] needs rolling.speed (mm/s): the bodies' material passes through the heat "
                              "source at the rolling speed")

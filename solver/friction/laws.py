@@ -11,7 +11,8 @@ With s >= 0 the magnitude of the local slip velocity (mm/s):
 each velocity term of size mu_i at s = 0, so mu_static = mu(0) = mu_kin + mu_1 + mu_2; s_i is where a term is halved
 (linear: where it ends). With T the surface temperature (degC):
 
-    temperature   mu(T) = mu_ref for T <= T_ref, linear to mu_ref + dmu_heat over [T_ref, T_ref + dT_heat], constant above
+    temperature   mu(T) = mu_ref for T <= T_ref, linear to mu_ref + dmu_heat over [T_ref, T_ref + dT_heat],
+                  constant above
 
 Polach's mu_stat ((1 - A) e^(-B s) + A) is the exponential law with mu_kin = A mu_stat, mu_1 = (1 - A) mu_stat,
 s_1 = ln 2 / B (B in s/mm). Evaluations take and return numpy arrays; `slope` is d mu / d s (1/(mm/s)), zero where a

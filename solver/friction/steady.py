@@ -31,9 +31,10 @@ def upwind_self_coefficient(problem: SteadyRolling) -> float:
 def solve_steady_friction(problem: SteadyRolling, pressure, friction: LocalFriction, xi=0.0, eta=0.0, phi=0.0, *,
                           initial=None, mu_initial=None, params: SteadyParams = SteadyParams()):
     """The steady state at creepages xi, eta and spin phi (1/mm) under `pressure` (MPa) with the friction law of
-    `friction` (its speed V in mm/s): the SteadyResult, its `friction` the FrictionState. initial: a traction to start from (2, ny, nx,
-    Kalker's convention); mu_initial: a coefficient field to start from (default mu_static). With friction.thermal
-    (a ContactTemperature on the grid) the temperatures are computed too (the temperature law needs them).
+    `friction` (its speed V in mm/s): the SteadyResult, its `friction` the FrictionState. initial: a traction to
+    start from (2, ny, nx, Kalker's convention); mu_initial: a coefficient field to start from (default mu_static).
+    With friction.thermal (a ContactTemperature on the grid) the temperatures are computed too (the temperature law
+    needs them).
 
     The coefficient is updated after every Gauss-Seidel sweep from that sweep's slip (solve_steady's bound_update:
     the law's value, Newton's step on each element's own feedback, solver.friction.iteration.CoefficientUpdate), so

@@ -60,7 +60,8 @@ class ContactTemperature:
         e1, e2 = body1.effusivity, body2.effusivity
         #: Blok's high-speed partition e1/(e1 + e2): the start of the partition solve
         self.blok_share = e1 / (e1 + e2)
-        self._self_sum = float(self.heat1.kernel[grid.ny - 1, grid.nx - 1] + self.heat2.kernel[grid.ny - 1, grid.nx - 1])
+        centre = (grid.ny - 1, grid.nx - 1)
+        self._self_sum = float(self.heat1.kernel[centre] + self.heat2.kernel[centre])
 
     @property
     def symmetric(self) -> bool:

@@ -30,7 +30,8 @@ def rolling(**sections):
     ({"friction": {"law": "rational", "mu_kin": 0.2, "mu_1": 0.1, "s_1": 1.0, "mu_2": 0.1}}, "mu_2 = 0.1 needs s_2"),
     ({"friction": {"law": "linear", "mu_kin": 0.2, "mu_1": 0.1, "s_1": 1.0, "memory_s0": 1.0}},
      "memory_s0 = 1.0 mm/s applies with memory_distance > 0"),
-    ({"friction": {"law": "exponential", "mu_kin": 0.2, "mu_1": 0.1, "s_1": 1.0}}, r"needs the rolling speed motion\.speed"),
+    ({"friction": {"law": "exponential", "mu_kin": 0.2, "mu_1": 0.1, "s_1": 1.0}},
+     r"needs the rolling speed motion\.speed"),
     ({"friction": {"law": "temperature", "mu_ref": 0.3, "T_ref": 0.0, "dmu_heat": -0.1, "dT_heat": 100.0},
       "motion": {"speed": 1.0}}, "needs the surface temperatures"),
     ({"friction": {"law": "temperature", "mu_ref": 0.3, "T_ref": 0.0, "dmu_heat": -0.4, "dT_heat": 100.0}},
@@ -39,7 +40,8 @@ def rolling(**sections):
       "solver": {"fidelity": "mdr"}}, r"fidelity = 'mdr' with \[friction\]"),
     ({"thermal": THERMAL, "motion": {"speed": 1.0}}, r"\[thermal\] applies to \[rolling\] scenes"),
     ({"thermal": {"conductivity1": 50.0}}, r"\[thermal\] needs density1"),
-    ({"friction": {"law": "exponential", "mu_kin": 0.0, "mu_1": 0.1, "s_1": 1.0}}, r"\[friction\] mu_kin = 0.0: allowed"),
+    ({"friction": {"law": "exponential", "mu_kin": 0.0, "mu_1": 0.1, "s_1": 1.0}},
+     r"\[friction\] mu_kin = 0.0: allowed"),
 ])
 def test_friction_and_thermal_keys_that_do_not_fit_are_refused_naming_them(data, match):
     base = {"geometry": {"R": 40.0}, "motion": {"w": 0.2}}

@@ -11,7 +11,8 @@ from rollcontact.bem import MaterialPair
 from rollcontact.bem.errors import ConvergenceError
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, ellipse_grid, hertz_pressure, kalker_coefficients,
                                       saturation_creepage, solve_steady)
-from rollcontact.solver.friction import FrictionLaw, FrictionMemory, FrictionParams, LocalFriction, solve_steady_friction
+from rollcontact.solver.friction import (FrictionLaw, FrictionMemory, FrictionParams, LocalFriction,
+                                         solve_steady_friction)
 
 A, B, FN, NU, V = 6.0, 4.0, 50e3, 0.28, 30000.0
 PAIR = MaterialPair.from_moduli(210e3, NU, 210e3, NU)
