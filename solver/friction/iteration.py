@@ -87,6 +87,13 @@ class CoefficientUpdate:
         self._sign = sign
         return self.residual <= self.params.tol
 
+    def settled(self, mu, T, weight) -> bool:
+        """True when every element with a residual above a tenth of the largest is relaxed by 1 or more again (none
+        of them is still being damped after swapping sides)."""
+        change = np.abs(T - mu) * weight
+        significant = change > 0.1 * change.max()
+        return bool(np.all(self.omega[significant] >= 1.0))
+
     def newton(self, mu, T, J) -> np.ndarray:
         """mu + (T - mu) / (1 - J), J clipped to [0, 1 - 1/max_gain], within the law's bounds."""
         return np.clip(mu + (T - mu) / (1.0 - np.clip(J, 0.0, self.cap)), *self.bounds)
@@ -124,8 +131,9 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     While the residual falls, the element-wise Newton steps are combined by Anderson's acceleration over the last
     ANDERSON_DEPTH iterates (Walker & Ni 2011: the coupling between neighbouring slipping elements, which the
     element-wise steps leave out, otherwise converges linearly at rates of 0.8-0.9); after an iterate whose residual
-    grew, and after ACCELERATION_TROUBLES of them until RESUME_AFTER relaxed iterates in a row have lowered it, the
-    step is the relaxed one of CoefficientUpdate (elements at the stick/slip boundary that swap between stick and slip
+    grew, and after ACCELERATION_TROUBLES of them until RESUME_AFTER relaxed iterates in a row have lowered it and the
+    elements that matter are no longer damped (CoefficientUpdate.settled), the step is the relaxed one of
+    CoefficientUpdate (elements at the stick/slip boundary that swap between stick and slip
     are damped until they settle). The early solves are inexact (INEXACT), the last one to the solver's tolerance. A
     solve that finds the force beyond the capacity of the current coefficients (GrossSlidingError) is retried from
     halfway back to the last coefficients that carried it; if the law's own coefficients cannot carry it either,
@@ -159,7 +167,7 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
             return Consistent(np.where(weight > 0, mu, T), solution, k, update.residual, J)
         grew = update.residual >= previous
         troubles, falling = (troubles + 1, 0) if grew else (troubles, falling + 1)
-        if troubles >= ACCELERATION_TROUBLES and falling >= RESUME_AFTER:
+        if troubles >= ACCELERATION_TROUBLES and falling >= RESUME_AFTER and update.settled(mu, T, weight):
             troubles = 0             # the relaxed steps have settled the swapping elements: accelerate again
         if grew or troubles >= ACCELERATION_TROUBLES:
             history.clear()
