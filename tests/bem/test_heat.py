@@ -31,7 +31,7 @@ def rosenthal(X, Y, hx, hy, c):
 OFFSETS = [(0.0, 0.0), (-0.2, 0.0), (0.2, 0.0), (-0.6, 0.2), (0.6, 0.0), (-2.2, 0.0), (-2.2, 0.6), (0.0, 3.0)]
 
 
-@pytest.mark.parametrize("c", [0.05, 1.0, 20.0, 500.0, 5000.0])
+@pytest.mark.parametrize("c", [0.05, 20.0, 5000.0])
 def test_element_response_is_rosenthals_point_source_integrated_over_the_element(c):
     """c = V/(2 kappa) from 0.05 to 5000 /mm on a 0.2 mm element: c dx = 0.01 ... 1000 (the thermal wake behind the
     element is then far narrower than the element). Agreement to 1e-8 of the element's own response."""
@@ -66,7 +66,7 @@ def test_the_square_source_tends_to_its_stationary_and_high_speed_limits():
     into the depth only, max 2/sqrt(pi Pe) and mean 4/(3 sqrt(pi Pe)) q a/k (Jaeger's 1-D solution)."""
     assert float(element_response(0.0, 0.0, 1.0, 1.0, 0.0)) == pytest.approx(4 * math.log(1 + math.sqrt(2)) / math.pi,
                                                                             rel=1e-12)
-    peak, mean = square_exact(1000.0)        # the mean's lateral losses fall as Pe^(-1/2): 0.7 % at Pe = 1000
+    peak, mean = square_exact(1000.0, n=32)  # the mean's lateral losses fall as Pe^(-1/2): 0.7 % at Pe = 1000
     assert peak == pytest.approx(2 / math.sqrt(math.pi * 1000.0), rel=1e-3)
     assert mean == pytest.approx(4 / (3 * math.sqrt(math.pi * 1000.0)), rel=1e-2)
 
@@ -104,7 +104,7 @@ def test_the_grid_rule_is_the_element_response_at_every_grid_offset(c, h):
     """MovingHeatSource builds its coefficients with `grid_response` (one rule in u for all offsets, a matrix
     product); it must be the element response at every offset of the grid, from no motion to c dx = 2e4."""
     from rollcontact.bem.heat import grid_response
-    n, m = 31, 17
+    n, m = (31, 17) if c < 1e4 else (11, 5)
     x, y = np.arange(-(n - 1), n) * 2 * h, np.arange(0, m) * 2 * h
     exact = element_response(x[None, :], y[:, None], h, h, c)
     assert grid_response(x, y, h, h, c) == pytest.approx(exact, abs=1e-8 * exact[0, n - 1])

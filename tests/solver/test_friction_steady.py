@@ -1,6 +1,6 @@
 """Steady rolling with a slip-velocity law (solver.friction.steady; docs/friction.md, "Validation"): the falling creep
 curve of the exponential law on a Hertzian ellipse (steel on steel, a = 6 mm along the rolling direction, b = 4 mm,
-Fn = 50 kN, 41 elements across, V = 30 m/s): linear in the creepage with Kalker's coefficient at small creepage, a
+Fn = 50 kN, 31 elements across, V = 30 m/s): linear in the creepage with Kalker's coefficient at small creepage, a
 peak, then falling to mu_kin Fn in full sliding; Coulomb's law through the same path is solve_steady's answer."""
 import math
 
@@ -22,7 +22,7 @@ PARAMS = SteadyParams(tol=1e-8)
 
 @pytest.fixture(scope="module")
 def ellipse():
-    grid = ellipse_grid(A, B, 41)
+    grid = ellipse_grid(A, B, 31)
     return SteadyRolling(grid, PAIR), hertz_pressure(grid, A, B, FN)
 
 
@@ -36,14 +36,14 @@ def test_falling_creep_curve_rises_linearly_peaks_and_falls_to_mu_kin_fn(ellipse
     problem, p = ellipse
     fn = float(p.sum()) * problem.grid.cell_area
     friction = LocalFriction(LAW, speed=V, params=FrictionParams(tol=1e-8))
-    fractions = np.array([0.02, 0.04, 0.5, 1.0, 1.5, 2.0, 3.0, 6.0, 12.0, 40.0])
+    fractions = np.array([0.02, 0.04, 0.5, 1.0, 1.7, 3.0, 12.0, 40.0])
     force, traction, mu = [], None, None
     for f in fractions:
         res = solve_steady_friction(problem, p, friction, f * xi_star(), initial=traction, mu_initial=mu, params=PARAMS)
         traction, mu = res.traction, res.friction.mu
         force.append(-res.force[0])
     force = np.array(force)
-    # linear range: the slope of Kalker's linear theory (the grid's own within its 2 % at 41 elements, as Coulomb's)
+    # linear range: the slope of Kalker's linear theory (within the grid's own error at 31 elements, as Coulomb's)
     for f, F in zip(fractions[:2], force[:2]):       # nearly all stick: Coulomb's at mu_static
         assert F == pytest.approx(-solve_steady(problem, p, LAW.mu_static, f * xi_star(), params=PARAMS).force[0],
                                   rel=2e-3)
@@ -75,7 +75,7 @@ def test_memory_raises_the_force_of_partial_slip(ellipse):
     problem, p = ellipse
     xi = 1.0 * xi_star()
     forces = []
-    for d_c in (0.0, 1e-4, 0.01, 0.1):
+    for d_c in (0.0, 1e-4, 0.01, 0.1):        # mm
         friction = LocalFriction(LAW, FrictionMemory(d_c), speed=V, params=FrictionParams(tol=1e-8))
         forces.append(-solve_steady_friction(problem, p, friction, xi, params=PARAMS).force[0])
     assert forces[1] == pytest.approx(forces[0], rel=2e-3)
