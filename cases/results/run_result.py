@@ -28,11 +28,11 @@ HISTORY_NAMES = tuple(HISTORY_UNITS)
 #: about the contact centre (Kalker's convention), xi, eta the creepages of the step, cpu_time its process CPU time.
 CREEP_HISTORY_UNITS = {"M_z": "N mm", "xi": "-", "eta": "-", "cpu_time": "s"}
 #: /history of a scene with a speed adds `time`, the end of each step (s; step n at n step_time); with a [friction] law
-#: `friction_iterations` (the solves of the step's slip-velocity iteration) and `frictional_power` (W, sum tau . s dA
-#: with s the slip velocity); with [thermal] (transient [rolling]) T1_max, T2_max, the largest surface temperatures.
-FRICTION_HISTORY_UNITS = {"time": "s", "friction_iterations": "-", "frictional_power": "W", "T1_max": "degC",
-                          "T2_max": "degC"}
-FRICTION_HISTORY = ("friction_iterations", "frictional_power")
+#: `friction_iterations` (the solves of the step's slip-velocity iteration), `frictional_power` (W, sum tau . s dA
+#: with s the slip velocity) and `friction_feedback` (the step's uniqueness indicator, solver.friction.FrictionState); with [thermal] (transient [rolling]) T1_max, T2_max, the largest surface temperatures.
+FRICTION_HISTORY_UNITS = {"time": "s", "friction_iterations": "-", "frictional_power": "W", "friction_feedback": "-",
+                          "T1_max": "degC", "T2_max": "degC"}
+FRICTION_HISTORY = ("friction_iterations", "frictional_power", "friction_feedback")
 
 #: /fields: snapshots of shape (stored steps, ny, nx), name -> unit. p, tau: pressure and traction exerted by the
 #: sphere on the substrate; u: displacements of the substrate surface relative to the sphere; slip: of that step.

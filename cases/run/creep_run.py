@@ -78,7 +78,8 @@ def _result(scene, grid, op, state, wall):
     if scene.speed is not None:
         history["time"] = [0.0]        # the steady state: one row, at t = 0
     if steady.friction is not None:
-        history.update(friction_iterations=[steady.friction.iterations], frictional_power=[steady.friction.power])
+        history.update(friction_iterations=[steady.friction.iterations], frictional_power=[steady.friction.power],
+                       friction_feedback=[steady.friction.feedback])
     history = {k: np.asarray(v) for k, v in history.items()}
     fields = {"p": normal.pressure, "u_z": normal.displacement, "tau_x": tau_sub[0], "tau_y": tau_sub[1],
               "slip_x": -steady.slip[0] * grid.dx, "slip_y": -steady.slip[1] * grid.dx, "u_x": u[0], "u_y": u[1],

@@ -119,7 +119,8 @@ def _row(rec, grid, step_time=None) -> dict:
     dA = grid.cell_area
     extra = {} if step_time is None else {"time": rec.step * step_time}
     if rec.friction is not None:
-        extra.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power)
+        extra.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power,
+                     friction_feedback=rec.friction.feedback)
         extra.update({f"{k}": v for k, v in temperature_summary(rec.friction).items()})
     return dict(step=rec.step, period=0, W_x=rec.centre, W_y=0.0, approach=nr.approach, Fn=nr.force,
                 contact_area=float(nr.contact.sum()) * dA, stick_area=rec.stick_cells * dA,

@@ -7,8 +7,8 @@ import numpy as np
 
 def friction_summary(scene, history: dict, state=None) -> dict:
     """mu_static and friction_law; frictional_power (W) of the last step (history/frictional_power) or of `state`
-    (a solver.friction.FrictionState: the steady state's), friction_feedback (its largest J) and, with
-    temperatures, T1_max, T2_max (degC)."""
+    (a solver.friction.FrictionState: the steady state's), friction_feedback (the uniqueness indicator: its, or the
+    largest of the steps') and, with temperatures, T1_max, T2_max (degC)."""
     from rollcontact.cases.scene.friction import friction_law
     law = friction_law(scene)
     out = dict(mu_static=scene.load.mu, friction_law=law.describe() if law else f"coulomb mu = {scene.load.mu:.6g}")
@@ -17,6 +17,7 @@ def friction_summary(scene, history: dict, state=None) -> dict:
         out.update(frictional_power=state.power, friction_feedback=state.feedback)
     elif power is not None and len(power):
         out["frictional_power"] = float(np.asarray(power)[-1])
+        out["friction_feedback"] = float(np.max(history["friction_feedback"]))
     out.update(temperature_summary(state))
     return out
 

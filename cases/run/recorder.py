@@ -14,7 +14,7 @@ class StepRecorder:
     also kept as the gzip chunks of the run file (`chunks`), compressed once however often the file is written.
     `transverse`: the unit vector across Ft (Scene.transverse_direction), along which U_perp is measured. A path with
     a step time adds the history column `time` (s); `friction` (a run with a friction law) the fields mu and
-    slip_velocity and the history columns friction_iterations and frictional_power."""
+    slip_velocity and the history columns friction_iterations, frictional_power and friction_feedback."""
 
     def __init__(self, grid, path, snapshot_steps, restart=None, compress=False, transverse=(0.0, 1.0),
                  friction=False):
@@ -66,7 +66,8 @@ class StepRecorder:
         if self.step_time is not None:
             row["time"] = rec.step * self.step_time
         if rec.friction is not None:
-            row.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power)
+            row.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power,
+                       friction_feedback=rec.friction.feedback)
         for k, v in row.items():
             self.history[k].append(v)
         if rec.step in self.snapshot_steps:
