@@ -66,7 +66,90 @@ def validation(out: Path, quick: bool) -> dict:
     _write_csv(out / "jaeger_square.csv", rows)
     balance = heat_balance(quick)
     _write_csv(out / "heat_balance.csv", balance)
-    return {"jaeger_square": rows, "heat_balance": balance}
+    curves = creep_curves(out, quick)
+    against = steady_against_transient(quick)
+    _write_csv(out / "steady_transient.csv", against)
+    return {"jaeger_square": rows, "heat_balance": balance, "creep_curves": curves, "steady_transient": against}
+
+
+def creep_curves(out: Path, quick: bool) -> dict:
+    """Steady creep-force curves on the Hertzian ellipse of tests/solver/test_friction_steady.py (41 elements
+    across, V = 30 m/s): Coulomb at mu = 0.3, the exponential law 0.15 + 0.15 2^(-s/100 mm/s) without and with memory
+    (d_c = 0.05 mm); the figure falling_creep_curve.png."""
+    from rollcontact.bem import MaterialPair
+    from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, ellipse_grid, hertz_pressure,
+                                          kalker_coefficients, saturation_creepage)
+    from rollcontact.solver.friction import (FrictionLaw, FrictionMemory, FrictionParams, LocalFriction,
+                                             solve_steady_friction)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    a, b, fn, nu, speed = 6.0, 4.0, 50e3, 0.28, 30000.0
+    pair = MaterialPair.from_moduli(210e3, nu, 210e3, nu)
+    grid = ellipse_grid(a, b, 31 if quick else 41)
+    p, problem = hertz_pressure(grid, a, b, fn), SteadyRolling(grid, pair)
+    xs = saturation_creepage(pair.G, math.sqrt(a * b), kalker_coefficients(a / b, nu)[0], 0.3, fn)
+    fractions = np.geomspace(0.02, 8.0, 12 if quick else 24)
+    creep = np.zeros((len(fractions), 3))
+    creep[:, 0] = fractions * xs
+    params = SteadyParams(tol=1e-8)
+    law = FrictionLaw("exponential", mu_kin=0.15, mu_1=0.15, s_1=100.0)
+    out_curves = {"fractions": fractions.tolist(),
+                  "coulomb": (-creep_curve(problem, p, 0.3, creep, params=params).force[:, 0] / (0.3 * fn)).tolist()}
+    for name, memory in (("law", FrictionMemory()), ("law, d_c = 0.05 mm", FrictionMemory(0.05))):
+        friction = LocalFriction(law, memory, speed=speed, params=FrictionParams(tol=1e-8))
+        states = []
+
+        def solve(problem, pressure, mu, xi, eta, phi, *, initial=None, params=None):
+            res = solve_steady_friction(problem, pressure, friction, xi, eta, phi, initial=initial, params=params,
+                                        mu_initial=states[-1] if states else None)
+            states.append(res.friction.mu)
+            return res
+        out_curves[name] = (-creep_curve(problem, p, 0.3, creep, params=params, solve=solve).force[:, 0]
+                            / (0.3 * fn)).tolist()
+    fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
+    for name, style in (("coulomb", "k-"), ("law", "o-"), ("law, d_c = 0.05 mm", "s-")):
+        ax.plot(fractions, out_curves[name], style, ms=3, label={"coulomb": "Coulomb, mu = 0.3"}.get(name, name))
+    ax.axhline(0.5, color="C3", ls="-.", lw=0.8, label="mu_kin Fn")
+    ax.set(xscale="log", xlabel="xi / xi* (xi* = mu_static Fn / (G c^2 C11))", ylabel="F_x / (mu_static Fn)",
+           title="steady creep-force curves, exponential law 0.15 + 0.15 2^(-s/100 mm/s), V = 30 m/s")
+    ax.title.set_fontsize(9)
+    ax.legend(fontsize=8)
+    fig.savefig(out / "falling_creep_curve.png", dpi=110)
+    plt.close(fig)
+    k = int(np.argmax(out_curves["law"]))
+    out_curves.update(peak_fraction=float(fractions[k]), peak=float(out_curves["law"][k]))
+    return out_curves
+
+
+def steady_against_transient(quick: bool) -> list:
+    """A sphere (R = 300 mm, steel, Fn = 20 kN, dx = 0.4 mm) rolled at V = 30 m/s from rest over 4 contact lengths
+    (mode 'transient', step dx) against its steady state, with the exponential law of creep_curves: in partial slip
+    with memory, in full sliding beyond the peak without, and in partial slip without memory (where the transient
+    does not settle)."""
+    import rollcontact
+    base = {"materials.E1": 210e3, "materials.nu1": 0.28, "materials.E2": 210e3, "materials.nu2": 0.28,
+            "load.Fn": 20e3, "rolling.speed": 30000.0, "grid.dx": 0.4, "friction.law": "exponential",
+            "friction.mu_kin": 0.15, "friction.mu_1": 0.15, "friction.s_1": 100.0}
+    cases = [("partial slip, d_c = 5 um", {"rolling.xi": 0.003, "friction.memory_distance": 0.005}),
+             ("full sliding, instantaneous", {"rolling.xi": 0.01})]
+    if not quick:
+        cases.append(("partial slip, instantaneous", {"rolling.xi": 0.003}))
+    rows = []
+    for name, over in cases:
+        scene = rollcontact.Scene.from_toml_text('[geometry]\nR = 300.0\n[rolling]\nmode = "steady"\n',
+                                                 name="sphere").with_overrides({**base, **over})
+        steady = rollcontact.run(scene)
+        transient = rollcontact.run(scene.with_overrides({"rolling.mode": "transient"}))
+        fx = np.asarray(transient.history["F_x"])
+        last = fx[-20:]                   # the force on the substrate: -F_x on the sphere
+        rows.append(dict(case=name, xi=over["rolling.xi"], F_x_steady=-steady.summary["F_x"],
+                         F_x_transient=-transient.summary["F_x"],
+                         relative_difference=transient.summary["F_x"] / steady.summary["F_x"] - 1,
+                         last_20_steps_min=float(last.min()), last_20_steps_max=float(last.max()),
+                         solves_per_step=float(np.mean(transient.history["friction_iterations"])),
+                         friction_feedback=steady.summary.get("friction_feedback")))
+    return rows
 
 
 def jaeger_square(quick: bool) -> list:
