@@ -132,3 +132,21 @@ def test_a_steady_run_with_temperatures_writes_them_and_their_maxima(tmp_path):
     from rollcontact.cases.cli.main import main
     assert main(["plot", str(tmp_path / "hot.h5"), "-o", str(tmp_path / "figures")]) == 0
     assert (tmp_path / "figures" / "hot_friction.png").stat().st_size > 10_000
+
+
+def test_creep_curve_takes_a_friction_law_and_falls_beyond_its_peak(tmp_path):
+    """`rollcontact creep-curve` with the exponential law: the CSV adds the law's columns, the curve peaks below
+    mu_static Fn and falls towards mu_kin Fn, and the figure marks mu_kin Fn."""
+    from rollcontact.cases.run.creep_curve import compute_curve, write_csv
+    from rollcontact.cases.plots.creep_figures import plot_curve
+    scene = rolling(friction={"law": "exponential", "mu_kin": 0.15, "mu_1": 0.15, "s_1": 100.0})
+    table = compute_curve(scene, "xi", np.geomspace(0.05, 8.0, 9))
+    ratio = np.array([r["F_over_muFn"] for r in table.rows])
+    k = int(np.argmax(ratio))
+    assert 0 < k < len(ratio) - 1 and ratio[k] < 1.0 and ratio[-1] < ratio[k]
+    assert table.rows[-1]["mu_min"] == pytest.approx(0.15, abs=0.02) and table.lowest_ratio == pytest.approx(0.5)
+    path = write_csv(table, tmp_path / "curve.csv")
+    header = open(path).read().splitlines()[1].split(",")
+    assert {"mu_min", "slip_velocity_max", "frictional_power"} <= set(header)
+    assert "exponential" in open(path).readline()
+    assert all(p.stat().st_size > 0 for p in plot_curve(table, tmp_path, "curve"))
