@@ -82,3 +82,25 @@ def test_bodies_at_different_bulk_temperatures_meet_at_their_effusivity_weighted
     assert temps.T1[inner] == pytest.approx((e1 * 0.0 + e2 * 150.0) / (e1 + e2), rel=0.03)
     assert np.max(np.abs(temps.T1 - temps.T2)[p > 0]) < 1e-8 * 150.0
     assert temps.power == 0.0 and float(np.sum(temps.q1 + temps.q2)) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_temperature_law_is_consistent_with_the_contact_temperature_it_heats(ellipse):
+    """mu = mu(T) with T the contact temperature of the frictional heat that mu itself produces: in steady full
+    sliding the converged coefficient is the law's at the computed temperature everywhere in the contact, and the
+    hotter rear of the contact has the lower coefficient."""
+    problem, p = ellipse
+    thermal = ContactTemperature(problem.grid, STEEL, STEEL, V, 20.0, 20.0)
+    law = FrictionLaw("temperature", mu_ref=0.3, T_ref=22.0, dmu_heat=-0.15, dT_heat=80.0)
+    c = math.sqrt(A * B)
+    xi = 6.0 * saturation_creepage(PAIR.G, c, kalker_coefficients(A / B, NU)[0], 0.3, FN)
+    friction = LocalFriction(law, speed=V, thermal=thermal)
+    res = solve_steady_friction(problem, p, friction, xi, params=SteadyParams(tol=1e-9))
+    temps, mu, contact = res.friction.temperatures, res.friction.mu, p > 0
+    assert 22.0 < temps.T1.max() < 102.0                                 # on the law's ramp
+    weight = p / p.max()
+    assert np.max(np.abs(mu - law.of_temperature(temps.T1)) * weight) < 1e-8 * 0.3
+    row = problem.grid.ny // 2
+    inside = np.nonzero(contact[row])[0]
+    assert mu[row, inside[0]] < mu[row, inside[-1]]                      # trailing (hot) below leading (cold)
+    assert not res.stick.any()                                           # full sliding: |F| = sum mu p dA
+    assert math.hypot(*res.force) == pytest.approx(float(np.sum(mu * p)) * problem.grid.cell_area, rel=1e-3)
