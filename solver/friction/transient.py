@@ -72,23 +72,24 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
         normal, tang, _ = solution
         s = velocity(tang)
         p = normal.pressure
+        weight = p / max(float(p.max()), 1e-300)
         if law.velocity_dependent:
             value, slope = law.coefficient(s), law.slope(s)
             T = memory.step(previous, value, s, dt)
             dT = memory.step_slope(previous, value, slope, s, dt)
-            return T, np.where(tang.region == 2, -dT * self_coefficient * p / dt, 0.0), p / p.max()
+            return T, np.where(tang.region == 2, -dT * self_coefficient * p / dt, 0.0), weight
         if law.temperature_dependent:
             temps = thermal.solve(frictional_flux(tang.traction, s), normal.contact)
             T = np.where(normal.contact, law.of_temperature(0.5 * (temps.T1 + temps.T2)), mu_static)
-            return T, np.zeros(shape), p / p.max()
-        return np.full(shape, law.mu), np.zeros(shape), p / p.max()
+            return T, np.zeros(shape), weight
+        return np.full(shape, law.mu), np.zeros(shape), weight
 
-    if law.velocity_dependent and not memory.active and tuple(moved) != (0, 0):
+    if law.kind == "coulomb":
+        start = np.full(shape, law.mu)
+    elif not memory.active and tuple(moved) != (0, 0):
         start = mu_static + _shifted(previous - mu_static, *moved)
-    elif law.velocity_dependent:
-        start = previous
     else:
-        start = np.full(shape, mu_static)
+        start = previous
     where = f"slip velocity over a step of {dt:.6g} s" if dt else "no speed"
     done = consistent_coefficient(run, target, start, mu_static=mu_static, bounds=friction.bounds,
                                   params=friction.params, regime=lambda J: feedback_regime(law, J, where))
