@@ -115,8 +115,8 @@ def friction_law(scene):
 
 def local_friction(scene, grid=None):
     """The scene's solver.friction.LocalFriction (None without [friction] and [thermal]): its law (with [thermal]
-    alone, Coulomb's with load.mu), memory and speed, the iteration's tolerance [solver] tol, and on `grid` (the
-    run's: x along the rolling direction) the contact temperatures of [thermal]."""
+    alone, Coulomb's with load.mu), memory and speed, the iteration's tolerance and budget [solver] tol and max_iter,
+    and on `grid` (the run's: x along the rolling direction) the contact temperatures of [thermal]."""
     from rollcontact.solver.friction import FrictionLaw, FrictionMemory, FrictionParams, LocalFriction
     law = friction_law(scene)
     if law is None and not thermal_on(scene):
@@ -125,7 +125,8 @@ def local_friction(scene, grid=None):
     fr = scene.friction
     memory = FrictionMemory(fr.memory_distance or 0.0, fr.memory_s0 or 0.0)
     thermal = contact_temperature(scene, grid) if grid is not None and thermal_on(scene) else None
-    return LocalFriction(law, memory, scene.speed, FrictionParams(tol=scene.solver.tol), thermal)
+    params = FrictionParams(tol=scene.solver.tol, max_iter=scene.solver.max_iter)
+    return LocalFriction(law, memory, scene.speed, params, thermal)
 
 
 def thermal_bodies(scene):

@@ -115,8 +115,9 @@ ANDERSON_DEPTH = 5
 ACCELERATION_TROUBLES = 2
 #: ... and the relaxed iterates with falling residual after which it resumes.
 RESUME_AFTER = 4
-#: The solve after an iterate with residual r (relative to mu_static) asks for the relative accuracy INEXACT r (never
-#: beyond its own tolerance): no iterate is solved much more accurately than its coefficient is known.
+#: The solve after an iterate with residual r (relative to mu_static) asks for the relative accuracy INEXACT r: no
+#: iterate is solved much more accurately than its coefficient is known, and near the iteration's tolerance the solves
+#: go below theirs (down to a tenth, StepParams.loosened), so that their noise does not hold the residual above it.
 INEXACT = 1e-2
 
 
@@ -134,7 +135,7 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     grew, and after ACCELERATION_TROUBLES of them until RESUME_AFTER relaxed iterates in a row have lowered it and the
     elements that matter are no longer damped (CoefficientUpdate.settled), the step is the relaxed one of
     CoefficientUpdate (elements at the stick/slip boundary that swap between stick and slip
-    are damped until they settle). The early solves are inexact (INEXACT), the last one to the solver's tolerance. A
+    are damped until they settle). The early solves are inexact, the last ones below the solver's tolerance (INEXACT). A
     solve that finds the force beyond the capacity of the current coefficients (GrossSlidingError) is retried from
     halfway back to the last coefficients that carried it; if the law's own coefficients cannot carry it either,
     that GrossSlidingError is raised."""
@@ -161,7 +162,7 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
         previous = update.residual
         if update.observe(mu, T, weight):
             if accuracy is not None and accuracy > params.tol:
-                update.residual = accuracy       # confirm with a solve to the full tolerance
+                update.residual = params.tol / INEXACT     # confirm with a solve to the full tolerance
                 continue
             # where nothing presses (weight 0) the coefficient bounds nothing: it is the law's (the memory state)
             return Consistent(np.where(weight > 0, mu, T), solution, k, update.residual, J)

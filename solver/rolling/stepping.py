@@ -179,11 +179,14 @@ class StepParams:
     max_outer: int = 30
 
     def loosened(self, accuracy):
-        """The tangential parameters with their tolerance raised to `accuracy` when that is looser (None: as they
-        are): the inexact early solves of a friction law's iteration (solver.friction.iteration)."""
-        if accuracy is None or accuracy <= self.tangential.tol:
+        """The tangential parameters for a solve of a friction law's iteration (solver.friction.iteration) asking for
+        the relative accuracy `accuracy` (None: as they are): their tolerance raised to it in the inexact early
+        solves (at most 1e-3), lowered to it (at least a tenth of theirs) where the iteration's own residual has come
+        down to its tolerance and the solve's noise would hold it there."""
+        if accuracy is None or accuracy == self.tangential.tol:
             return self.tangential
-        return TangentialParams(tol=min(accuracy, 1e-3), max_iter=self.tangential.max_iter)
+        return TangentialParams(tol=min(max(accuracy, 0.1 * self.tangential.tol), 1e-3),
+                                max_iter=self.tangential.max_iter)
 
 
 @dataclass
