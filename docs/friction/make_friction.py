@@ -321,7 +321,7 @@ def veldep(quick: bool):
                   stick_cells=int(res.stick.sum()), slip_cells=int((res.contact & ~res.stick).sum()),
                   p_max=float(p.max()), contact_cells=int((p > 0).sum()), friction_feedback=res.friction.feedback,
                   ref=json.dumps(VELDEP_REF))
-    distance = 16.0 if quick else 56.0
+    distance = 16.0 if quick else 120.0
     world = Grid.covering(-4.9, distance + 4.9, -300.0, 300.0, 0.1, 200.0)
     fx, x, solves = [], [], []
     for rec in roll_world(HalfSpaceOperator(world, pair), profile, Fn=FN, mu=MU, distance=distance, step=0.1, xi=XI,
@@ -420,16 +420,16 @@ def main(argv=None):
                     help="folder of the limit searches' probe runs (default results/friction_runs)")
     args = ap.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
-    results = {}
     for part in args.part:
-        t0, c0 = time.time(), time.process_time()
+        t0, c0, load = time.time(), time.process_time(), os.getloadavg()
         print(f"{part} ...", flush=True)
-        results[part] = {"validation": lambda: validation(args.out, args.quick),
-                         "contact": lambda: contact(args.out, args.quick),
-                         "study": lambda: study(args.out, args.quick, args.jobs, args.runs)}[part]()
-        results[part]["wall_s"], results[part]["cpu_s"] = time.time() - t0, time.process_time() - c0
-    results["load"] = os.getloadavg()
-    (args.out / f"friction{'_quick' if args.quick else ''}.json").write_text(json.dumps(results, indent=1, default=str))
+        result = {"validation": lambda: validation(args.out, args.quick),
+                  "contact": lambda: contact(args.out, args.quick),
+                  "study": lambda: study(args.out, args.quick, args.jobs, args.runs)}[part]()
+        result.update(wall_s=time.time() - t0, cpu_s=time.process_time() - c0, load_before=load,
+                      load_after=os.getloadavg(), date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()))
+        name = f"friction_{part}{'_quick' if args.quick else ''}.json"
+        (args.out / name).write_text(json.dumps(result, indent=1, default=str))
     print(f"written to {args.out}")
     return 0
 
