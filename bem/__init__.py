@@ -1,11 +1,12 @@
 """Elastic half-space: materials, world-fixed grid, influence coefficients, FFT convolution operator.
 
     errors      the project's exceptions (RollcontactError and its kinds)
-    materials   elastic constants of a pair of bodies (theory.md §1)
+    materials   elastic constants of a pair of bodies (docs/theory.md §1)
     grid        the world-fixed grid of piecewise-constant elements
-    influence   Boussinesq-Cerruti influence coefficients of a rectangular element (theory.md §2)
-    operator    the influence coefficients applied by zero-padded FFT convolution (theory.md §3)
-    subsurface  stresses below the grid from its tractions, depth layer by depth layer (theory.md §11.6)
+    influence   Boussinesq-Cerruti influence coefficients of a rectangular element (docs/theory.md §2)
+    operator    the influence coefficients applied by zero-padded FFT convolution (docs/theory.md §3)
+    toeplitz    given (non-symmetric) Toeplitz kernels applied the same way (steady viscoelastic rolling)
+    subsurface  stresses below the grid from its tractions, depth layer by depth layer (docs/theory.md §11.6)
     rows        the tangential influence of one grid row's change on the other rows, by 1-D FFTs
     wisdom      FFTW wisdom cached on disk (and the pyfftw import the operator uses)
     heat        surface temperature of a half-space moving under a heat flux (moving heat source, by FFT)
@@ -19,8 +20,8 @@ _WHERE = {"ConvergenceError": "errors", "ContactEdgeError": "errors", "GrossSlid
           "OutputExistsError": "errors", "OutputInUseError": "errors",
           "InputError": "errors", "RollcontactError": "errors", "SceneError": "errors", "Grid": "grid",
           "contact_box": "grid", "influence_coefficients": "influence", "Material": "materials",
-          "MaterialPair": "materials", "HalfSpaceOperator": "operator", "SubsurfaceStresses": "subsurface",
-          "MovingHeatSource": "heat", "ThermalBody": "heat"}
+          "MaterialPair": "materials", "HalfSpaceOperator": "operator", "ToeplitzOperator": "toeplitz",
+          "SubsurfaceStresses": "subsurface", "MovingHeatSource": "heat", "ThermalBody": "heat"}
 __all__ = list(_WHERE)
 
 

@@ -5,7 +5,7 @@ import sys
 def import_pyfftw():
     """pyfftw, imported without the parts rollcontact does not use. Its package imports pyfftw.interfaces, which
     imports scipy.fftpack and, when Dask is installed, dask.array for its wrappers of those interfaces: 0.55 s of
-    a 0.57 s import, paid by every run (measured 2026-11-25, 2-core AMD EPYC). rollcontact plans FFTW objects
+    a 0.57 s import, paid by every run (benchmarks/startup.py). rollcontact plans FFTW objects
     directly, so those two are hidden from that import (a None entry in sys.modules makes an import fail) and
     restored at once; pyfftw.interfaces is complete but for its scipy and Dask wrappers, which a later import of
     pyfftw.interfaces.scipy_fft (or .dask_fft) still loads."""

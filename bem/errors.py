@@ -53,3 +53,18 @@ class OutputExistsError(InputError):
 
 class OutputInUseError(InputError):
     """Another process is writing the same output (the message names the process and its host)."""
+
+
+class OutputWriteError(RollcontactError):
+    """A file could not be written: a full disk, a folder that vanished, a read-only file system. The message names
+    the file and the failure; nothing partial is left under the file's name (cases.results.writing).
+
+    Attributes: `path` (the file), `errno` (the operating system's error number), and, set by the code that knows
+    them, `result` (the RunResult still in memory, when a run's final write failed) and `restart` (the file a
+    `--restart` continues from: the run's last good checkpoint, when one is kept)."""
+
+    def __init__(self, message, *, path=None, errno=None):
+        super().__init__(message)
+        self.path, self.errno = path, errno
+        self.result = None
+        self.restart = None

@@ -1,4 +1,4 @@
-"""World-fixed rectangular grid of piecewise-constant elements (theory.md §0, §6.1).
+"""World-fixed rectangular grid of piecewise-constant elements (docs/theory.md §0, §6.1).
 
 Cell centres sit on integer multiples of the spacing: x_i = i*dx for i = i0 .. i0+nx-1 (same in y), so the
 origin (the sphere's initial centre) is a cell centre and the centre lines x = 0, y = 0 are rows of

@@ -1,10 +1,10 @@
-"""Influence coefficients of a uniformly loaded rectangular element (theory.md §2).
+"""Influence coefficients of a uniformly loaded rectangular element (docs/theory.md §2).
 
 Displacement at an observation point offset (X, Y) (mm) from the centre of a dx x dy element carrying a
 unit uniform traction (1 MPa), for two bodies with Kalker's combined constants G, nu, K
 (see `bem.materials.MaterialPair`). Units: mm per MPa.
 
-Conventions (theory.md §0): pressure p presses on the substrate, tractions tau act on the substrate;
+Conventions (docs/theory.md §0): pressure p presses on the substrate, tractions tau act on the substrate;
 w (u_z) is the loss of separation (positive into the bodies), (u_x, u_y) the substrate displacement
 relative to the sphere.
 
@@ -27,7 +27,7 @@ COMPONENTS = ("zz", "xx", "yy", "xy", "xz", "yz")
 
 
 def _log_x_plus_r(X, Y, r):
-    """ln(X + r), evaluated without cancellation for X < 0 as 2 ln|Y| - ln(r - X) (theory §2.2a)."""
+    """ln(X + r), evaluated without cancellation for X < 0 as 2 ln|Y| - ln(r - X) (docs/theory.md §2.2a)."""
     with np.errstate(divide="ignore", invalid="ignore"):
         pos = np.log(np.where(X >= 0, X + r, 1.0))
         neg = 2.0 * np.log(np.abs(np.where(X < 0, Y, 1.0))) - np.log(np.where(X < 0, r - X, 1.0))

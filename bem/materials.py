@@ -1,15 +1,15 @@
-"""Elastic constants of a pair of bodies (theory.md §1).
+"""Elastic constants of a pair of bodies (docs/theory.md §1).
 
 Body 1 is the sphere (upper body), body 2 the substrate (half-space below z = 0). Moduli in MPa.
 A rigid body has E = inf.
 
 Two families of combined constants are used:
-* Kalker's (CONTACT's) G, nu, K for the influence coefficients (§2.2):
+* Kalker's (CONTACT's) G, nu, K for the influence coefficients (docs/theory.md §2.2):
       1/G = (1/G1 + 1/G2)/2,  nu/G = (nu1/G1 + nu2/G2)/2,  K/G = ((1-2nu1)/G1 - (1-2nu2)/G2)/4
-  (K is a difference: identical materials are uncoupled, pitfall P6);
+  (K is a difference: identical materials are uncoupled, docs/theory.md P6);
 * the Hertz/MDR constants E*, G* (Popov & Hess):
       E* = [(1-nu1^2)/E1 + (1-nu2^2)/E2]^-1,   G* = [(2-nu1)/(4G1) + (2-nu2)/(4G2)]^-1.
-  The seed's Eq. 2 prints E* with (1-nu)/G, which is half the usual value (pitfall P1); the usual
+  The seed's Eq. 2 prints E* with (1-nu)/G, which is half the usual value (docs/theory.md P1); the usual
   E* reproduces Table 1 (a = 4.8 mm, d = 0.57 mm).
 Dundurs' beta = K/(1-nu) measures the normal-tangential coupling; beta = 0 decouples them.
 """

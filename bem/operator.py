@@ -1,4 +1,4 @@
-"""Half-space convolution operator: influence coefficients applied by zero-padded FFT (theory.md §3).
+"""Half-space convolution operator: influence coefficients applied by zero-padded FFT (docs/theory.md §3).
 
 The displacement fields produced by piecewise-constant tractions on a `Grid` are aperiodic 2-D
 convolutions with the element influence coefficients (`bem.influence`). They are evaluated exactly by
@@ -7,7 +7,7 @@ Liu 2000). Kernel spectra and pyfftw plans are built once per operator and reuse
 preallocated, so a product allocates only its output (or nothing, when `out=` is given).
 
 Fields are arrays of shape (ny, nx): pressure p and tractions tau_x, tau_y in MPa, displacements in mm
-(theory.md §0 conventions: u_z positive into the bodies, (u_x, u_y) substrate relative to sphere).
+(docs/theory.md §0 conventions: u_z positive into the bodies, (u_x, u_y) substrate relative to sphere).
 """
 import math
 
@@ -21,22 +21,22 @@ from rollcontact.bem.materials import MaterialPair
 
 #: |beta| below which the normal-tangential coupling is dropped in 'auto' mode. At the seed's
 #: steel-on-rubber pair (beta = 7e-6) the coupling displacements are < 1e-5 of the direct ones,
-#: far below any accuracy the discretisation offers (theory.md §1).
+#: far below any accuracy the discretisation offers (docs/theory.md §1).
 COUPLING_THRESHOLD = 1e-4
 
 #: Floor on the eigenvalues of the periodic kernel symbols when they are inverted, relative to the self coefficient
 #: (the symbols' high-frequency scale: their smallest eigenvalue is 0.28-0.52 of it for cell aspect ratios up to 4,
-#: at every grid size). It only guards against non-positive values. The floor used to be 1e-3 of the largest
-#: eigenvalue, which grows with the grid's width (the k = 0 value of a 1/r kernel): it clipped 18 % of the
-#: tangential symbol at 511^2 (lambda_min of the preconditioned stick block 0.87 -> 0.97 without) and the normal
-#: one from about 520^2 (normal Hertz at 768^2 / 1024^2: 15 / 18 -> 13 / 13 iterations).
+#: at every grid size). It only guards against non-positive values. A floor relative to the largest eigenvalue
+#: would grow with the grid's width (the k = 0 value of a 1/r kernel): 1e-3 of it clips 18 % of the tangential
+#: symbol at 511^2 (lambda_min of the preconditioned stick block 0.87 against 0.97) and the normal one from about
+#: 520^2 (normal Hertz at 768^2 / 1024^2: 15 / 18 iterations against 13 / 13).
 PRECONDITIONER_FLOOR = 0.05
 
 def smooth_length(n: int, even: bool = False) -> int:
     """Smallest 5-smooth integer >= n (only prime factors 2, 3, 5), and even if asked: a fast FFT length.
 
     Without `even` it equals scipy.fft.next_fast_len(n, real=True) (checked for n < 20000 in tests/bem), which
-    the preconditioner's circulant periods were measured with; it is computed here so that a run does not import
+    the preconditioner's circulant periods were tuned with; it is computed here so that a run does not import
     scipy.fft (0.2 s at start-up).
     """
     m = max(2 if even else 1, int(n))
@@ -55,14 +55,14 @@ def fft_length(n: int) -> int:
     """Smallest even 5-smooth integer >= n: the FFT length used for a dimension needing n points.
 
     An odd 5-smooth length (125, 135, 225) is avoided: FFTW's real transforms of odd length are 1.3-4x slower
-    than those of the next even 5-smooth one (measured on the benchmark machine: one padded convolution pair on
-    125^2 0.13 ms, on 128^2 0.05 ms).
+    than those of the next even 5-smooth one (one padded convolution pair on 125^2 takes 0.13 ms, on 128^2
+    0.05 ms; benchmarks/README.md, normal_hertz).
     """
     return smooth_length(n, even=True)
 
 
-def _fft_pairs(ks, shape, threads, planner):
-    """{k: _FFTPair} for batches of k fields of `shape`. Plans come from the on-disk FFTW wisdom; the wisdom
+def fft_pairs(ks, shape, threads, planner):
+    """{k: _FFTPair} for batches of k fields of `shape` (this operator's and bem.toeplitz's). Plans come from the on-disk FFTW wisdom; the wisdom
     is written back only when this process plans a transform for the first time (exporting it costs ms)."""
     with _wisdom.lock:
         _wisdom.load()
@@ -120,7 +120,7 @@ class HalfSpaceOperator:
         comps = ("zz", "xx", "yy", "xy") + (("xz", "yz") if self.coupled else ())
         kernels = self._kernels(comps)
         self.self_coefficients = {c: float(k[0, 0]) for c, k in kernels.items()}
-        self._fft = _fft_pairs((1, 2, 3), self.padded, self.threads, planner)
+        self._fft = fft_pairs((1, 2, 3), self.padded, self.threads, planner)
         scale = 1.0 / (self.padded[0] * self.padded[1])  # c2r is unnormalised: fold 1/N into spectra
         self.spectra = {}
         f1 = self._fft[1]
@@ -164,8 +164,8 @@ class HalfSpaceOperator:
         whose kernel is the influence coefficient at the nearest periodic offset (Strang's choice); the
         circulant is inverted exactly in Fourier space. Working on the unpadded grid costs a quarter of
         a padded convolution, so a preconditioned CG iteration costs about 1.25 convolution pairs
-        (theory.md §4.3, §5.4). Its period is the 5-smooth length of the grid (smooth_length) (an odd length is kept here:
-        the circulant's period changes the preconditioner, and the near-bound tangential solves were measured
+        (docs/theory.md §4.3, §5.4). Its period is the 5-smooth length of the grid (smooth_length) (an odd length is kept here:
+        the circulant's period changes the preconditioner, and the near-bound tangential solves were tuned
         with these periods). The zz, xx, yy kernels are even and xy is odd in X and in Y, so all four
         symbols are real. The symbol's eigenvalues are floored at PRECONDITIONER_FLOOR times the self
         coefficient (a truncated 1/r kernel is not always positive definite at the highest frequencies).
@@ -192,7 +192,7 @@ class HalfSpaceOperator:
         scale = 1.0 / (sy * sx)  # c2r is unnormalised
         symbols = {"zz": scale / zz, **self._tangential_inverse_symbols(0.0)}
         self.inverse_spectra = {c: np.ascontiguousarray(v, dtype=np.float64) for c, v in symbols.items()}
-        self._fft_small = _fft_pairs((1, 2), self.small, self.threads, planner)
+        self._fft_small = fft_pairs((1, 2), self.small, self.threads, planner)
 
     def _coupling_blocks(self):
         """The coupling products' (imaginary) spectra stacked as complex (outputs, inputs, Py, Px//2+1) arrays."""

@@ -1,4 +1,4 @@
-"""The tangential influence of a change on one grid row on the other rows, by 1-D FFTs along x (theory.md §3).
+"""The tangential influence of a change on one grid row on the other rows, by 1-D FFTs along x (docs/theory.md §3).
 
 A row-by-row Gauss-Seidel sweep (the steady rolling solver, `solver.creep`) changes the tractions of one row of
 the (ny, nx) grid at a time; before the next row starts, the displacements of every other row must include that

@@ -1,4 +1,5 @@
-"""Stresses inside the substrate from the surface tractions of a grid, depth layer by depth layer (theory.md §11.6).
+"""Stresses inside the substrate from the surface tractions of a grid, depth layer by depth layer (docs/theory.md
+§11.6).
 
 Element influence. A uniform traction (pressure p, shears q_x, q_y, 1 MPa each) on one dx x dy element gives at
 the offset (X, Y) (mm, observation point minus element centre) and depth z >= 0 (mm) the stresses
@@ -31,19 +32,20 @@ against adaptive quadrature of the Boussinesq-Cerruti point-load stresses over a
 tests/bem/test_subsurface.py repeats it with Gauss-Legendre quadrature.
 Stresses depend on the substrate's Poisson ratio nu only (not on its modulus).
 
-Conventions (theory.md §0): p presses on the substrate, (q_x, q_y) = (tau_x, tau_y) act on it; z is the depth
+Conventions (docs/theory.md §0): p presses on the substrate, (q_x, q_y) = (tau_x, tau_y) act on it; z is the depth
 below the surface, the frame (x, y, z) has z pointing into the substrate; tension positive. At the surface
 sigma_zz = -p, sigma_xz = -tau_x, sigma_yz = -tau_y; over any plane z = const the integrals of sigma_zz,
 sigma_xz, sigma_yz are -Fn, -F_x, -F_y.
 
 Cancellation: ln(Y + rho) and 1/(Y + rho) lose digits for Y < 0, |Y| >> (X^2 + z^2)^(1/2); they are evaluated as
-ln(X^2 + z^2) - ln(rho - Y) and (rho - Y)/(X^2 + z^2) there (theory.md §2.2a). T_X is written without the
+ln(X^2 + z^2) - ln(rho - Y) and (rho - Y)/(X^2 + z^2) there (docs/theory.md §2.2a). T_X is written without the
 difference rho - z. On a grid (observation points at cell centres) no corner has X = 0 or Y = 0, so every corner
 function is finite also at z = 0.
 
 Layers. On a `Grid` the stresses at depth z are aperiodic convolutions of the three traction fields with the 15
 distinct kernels [[C]] (qx zz = p xz, qy zz = p yz, qx yz = qy xz); they are evaluated by zero-padded FFT on the
-padded size of `bem.operator.HalfSpaceOperator` (DC-FFT, theory.md §3): the tractions are transformed once, and each
+padded size of `bem.operator.HalfSpaceOperator` (DC-FFT, docs/theory.md §3): the tractions are transformed once, and
+each
 layer costs the kernel evaluation (numba) and 15 forward plus 6 inverse FFTs, with plans and buffers built once.
 """
 from __future__ import annotations
@@ -61,7 +63,7 @@ from rollcontact.bem._fftw import pyfftw
 
 #: stress components, in the order of every (6, ...) array of this module (the frame x, y, z = depth)
 COMPONENTS = ("s_xx", "s_yy", "s_zz", "s_yz", "s_xz", "s_xy")
-#: the 15 distinct kernels: (traction, component) for each row of `corner_functions`' output
+#: the 15 distinct kernels: (traction, component) for each row of `_corners_at`' output
 KERNELS = (("p", "s_xx"), ("p", "s_yy"), ("p", "s_zz"), ("p", "s_yz"), ("p", "s_xz"), ("p", "s_xy"),
            ("q_x", "s_xx"), ("q_x", "s_yy"), ("q_x", "s_yz"), ("q_x", "s_xz"), ("q_x", "s_xy"),
            ("q_y", "s_xx"), ("q_y", "s_yy"), ("q_y", "s_yz"), ("q_y", "s_xy"))

@@ -1,19 +1,19 @@
 """Accuracy against wall time: grid spacing, rolling step and solver tolerance (issue #7).
 
-    .venv/bin/python benchmarks/accuracy_speed.py [--quick] [--repeats 3] [--no-peers]
+    .venv/bin/python benchmarks/accuracy_speed.py [--quick] [--repeats 3] [--no-peers] [-o DIR]
 
 Three problems, each swept over the discretisation and the tolerance, error plotted against wall time:
 
 (a) Hertz normal contact of the seed sphere (R = 40 mm, Fn = 21.19 N, E* = 5.79985 MPa), square grid over
     +-1.25 a, a/dx = 6 ... 96, tol 1e-4 ... 1e-10. Error: relative error of the approach d against Hertz
-    (theory.md §7.1), and of the centre pressure against p0. Time: one cold `solve_normal` (median of
+    (docs/theory.md §7.1), and of the centre pressure against p0. Time: one cold `solve_normal` (median of
     --repeats, after a warm-up solve: FFTW planning and numba compilation excluded; operator set-up time is
     reported separately). Peers, if importable (the optional `bench` extra): tamaas (PolonskyKeerRey with its
     non-periodic "dcfft" operator) and ContactMechanics (FreeFFTElasticHalfSpace + constrained CG, pentol =
     tol d), on the same grids, the same tolerance number and in the same process, their approach taken from
     the pressure they return (d = mean over the contact of h + A p, our operator) resp. their offset.
 (b) Cattaneo-Mindlin, f_t = 0.5, same geometry but two identical bodies with nu = 0 (E1 = E2 = 2 E*): beta = 0
-    and nu = 0, the case in which Mindlin's shift is exact (theory.md §7.2, P10), so that the error against the
+    and nu = 0, the case in which Mindlin's shift is exact (docs/theory.md §7.2, P10), so that the error against the
     closed form goes to zero with dx. Error: relative error of the rigid shift U. Time: the cold
     `solve_tangential` (pressure from `solve_normal` on the same grid, tol 1e-10).
 (c) The shakedown displacement u_sd of the paper scene (f_t = 0.46, w = 0.23, 10 periods), perpendicular and
@@ -25,12 +25,12 @@ Order of convergence: slope of log error vs log dx between successive grids. Par
 not beaten in both error and time. Recommended default for (c): the cheapest setting whose u_sd is within
 1 % of u* in both alignments.
 
-JSON and PNG to benchmarks/results/accuracy_speed.{json,png}. The 2 cores are shared with other jobs:
+JSON and PNG to DIR/accuracy_speed.{json,png} (default results/benchmarks/; the committed chart:
+-o benchmarks/results). The 2 cores are shared with other jobs:
 times are medians and noisy by ~20 %.
 """
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import statistics
@@ -42,6 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from accuracy_speed_chart import chart, pareto
+import _record
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.bem.errors import RollcontactError
 from rollcontact.cases.run.scene_run import run_scene
@@ -56,7 +57,6 @@ SCENE_PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 HERTZ = HertzSphere(R, SCENE_PAIR.E_star, FN)
 E_ID = 2.0 * SCENE_PAIR.E_star                       # identical nu = 0 bodies: E* = E/2, beta = 0
 MINDLIN_PAIR = MaterialPair.from_moduli(E_ID, 0.0, E_ID, 0.0)
-RESULTS = Path(__file__).parent / "results"
 
 
 def median_time(fn, repeats):
@@ -182,7 +182,7 @@ def run_usd(angle, dx, dW, tol, repeats):
     times, out = [], None
     with tempfile.TemporaryDirectory() as tmp:
         for _ in range(max(1, repeats)):
-            out = run_scene(scene, Path(tmp) / "run.h5")
+            out = run_scene(scene, Path(tmp) / "run.h5", overwrite=True)
             times.append(out.wall_time)
     d = out
     s, h = d.summary, d.history
@@ -252,7 +252,7 @@ def usd_reference(rows, angle, dxs, dWs, dW_ref_dx=0.2):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--quick", action="store_true", help="coarse grids only (a/dx <= 24; dx >= 0.2 for u_sd)")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--no-peers", action="store_true")
@@ -273,7 +273,8 @@ def main():
             if s is not None:
                 peers[name] = s
     print(f"peers: {sorted(peers) or 'none importable'}", flush=True)
-    out = RESULTS / ("accuracy_speed_quick.json" if args.quick else "accuracy_speed.json")
+    name = "accuracy_speed_quick" if args.quick else "accuracy_speed"
+    out = args.output / f"{name}.json"
     old = json.loads(out.read_text()) if out.exists() and skip else {}
     hertz = old.get("hertz", []) if "a" in skip else hertz_sweep(ratios, tols, args.repeats, peers)
     catt = old.get("cattaneo", []) if "b" in skip else cattaneo_sweep(ratios, tols, args.repeats)
@@ -320,10 +321,9 @@ def main():
                         for p in (lambda pts: [pts[i] for i in pareto([(q["time_s"], abs(q["err_vs_ref"])) for q in pts])])(
                             [r for r in usd if str(r["angle"]) == a and "err_vs_ref" in r])]
                     for a in refs})
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(dict(benchmark="accuracy_speed", quick=args.quick, peers=sorted(peers),
-                                   note="wall times: medians on a shared 2-core machine, noisy by ~20 %",
-                                   hertz=hertz, cattaneo=catt, u_sd=usd, summary=summary), indent=1, default=float))
+    _record.write(name, dict(benchmark="accuracy_speed", quick=args.quick, peers=sorted(peers),
+                             note="wall times: medians on a shared 2-core machine, noisy by ~20 %",
+                             hertz=hertz, cattaneo=catt, u_sd=usd, summary=summary), args.output)
     png = out.with_suffix(".png")
     chart(hertz, catt, usd, refs, png)
     print(json.dumps(summary, indent=1, default=float))

@@ -1,7 +1,7 @@
 """What the checkpoints of a run cost: the paper scenes written with checkpoints (cases.run.checkpoint) against the
 run's wall time.
 
-    .venv/bin/python benchmarks/checkpoint.py [--repeats 5] [--stresses] [--out benchmarks/results/checkpoint.json]
+    .venv/bin/python benchmarks/checkpoint.py [--repeats 5] [--stresses] [-o DIR]
 
 Each of the four paper scenes (rolling parallel / perpendicular to Ft, f_t = 0.46 / 0.77, dx = dW = 0.2 mm, 10
 periods, 11 checkpoints: end of loading and every period end) is run --repeats times in this process after a
@@ -12,7 +12,6 @@ also compute the subsurface stresses of each stored step as they go (`run --stre
 step files beside the run file, never into the checkpoints): the checkpoints must cost what they cost without.
 """
 import argparse
-import json
 import os
 from pathlib import Path
 import statistics
@@ -20,6 +19,8 @@ import tempfile
 import time
 
 from rollcontact.cases import api
+
+import _record
 
 HERE = Path(__file__).resolve().parent
 SCENES = [("parallel", 0.46, {"motion.angle": 0}), ("perpendicular", 0.46, {}),
@@ -31,10 +32,8 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per scene (median; default 5)")
     parser.add_argument("--stresses", action="store_true", help="runs with stresses=True (run --stresses)")
-    parser.add_argument("--out", default=None, help="JSON output (default: benchmarks/results/checkpoint.json, "
-                        "checkpoint_stresses.json with --stresses)")
+    _record.add_output(parser)
     args = parser.parse_args(argv)
-    args.out = args.out or str(HERE / "results" / ("checkpoint_stresses.json" if args.stresses else "checkpoint.json"))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for setting, f_t, overrides in SCENES:
@@ -59,10 +58,8 @@ def main(argv=None):
                   f"{row['checkpoint_s'] * 1e3:.0f} ms = {100 * row['share']:.1f} %, final write "
                   f"{row['final_write_s'] * 1e3:.0f} ms, in memory {row['in_memory_wall_s']:.2f} s, "
                   f"file {row['file_mb']:.1f} MB", flush=True)
-    result = {"date": time.strftime("%Y-%m-%d"), "repeats": args.repeats, "stresses": args.stresses,
-              "load": os.getloadavg()[0], "rows": rows}
-    Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {args.out}")
+    result = {"repeats": args.repeats, "stresses": args.stresses, "rows": rows}
+    _record.write("checkpoint_stresses" if args.stresses else "checkpoint", result, args.output)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """Cost of one coupled step (beta != 0): the nested normal/tangential (Panagiotopoulos) loop, per outer iteration.
 
-    .venv/bin/python benchmarks/coupled_step.py [--repeats 3]
+    .venv/bin/python benchmarks/coupled_step.py [--repeats 3] [-o DIR]
 
 Steel sphere (E = 210e3 MPa, nu = 0.3, R = 10 mm) on aluminium (E = 70e3 MPa, nu = 0.33; Dundurs beta = -0.117),
 Fn = 500 N (a = 0.40 mm), mu = 0.3, one step from the unloaded state to Ft = f_t mu Fn along x (f_t = 0.3, 0.6,
@@ -9,13 +9,10 @@ Fn = 500 N (a = 0.40 mm), mu = 0.3, one step from the unloaded state to Ft = f_t
 the tangential products (`op.tangential` calls, re-synchronisations included) of every outer iteration, their
 totals, the wall time (median of --repeats, one FFTW thread, after a warm-up) and the rigid shift U_x.
 The counts are deterministic; the times are from a shared 2-core machine (noisy).
-JSON to benchmarks/results/coupled_step.json.
+JSON to DIR/coupled_step.json (default results/benchmarks/).
 """
-import argparse
-import json
 import statistics
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -23,9 +20,10 @@ from rollcontact.solver.rolling import coupled
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.solver.analytic import HertzSphere
 
+import _record
+
 R, FN, MU = 10.0, 500.0, 0.3
 MATS = MaterialPair.from_moduli(210e3, 0.3, 70e3, 0.33)
-OUT = Path(__file__).parent / "results" / "coupled_step.json"
 
 
 class Counts:
@@ -71,7 +69,7 @@ def case(op, h, f_t, repeats):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args()
     a = HertzSphere(R, MATS.E_star, FN).a
@@ -88,9 +86,7 @@ def main():
             print(f"{grid.shape[0]}^2 f_t={f_t}: outer {row['outer']}, normal {row['normal_iterations']} "
                   f"(sum {row['normal_total']}), tangential {row['tangential_products']} "
                   f"(sum {row['tangential_total']}), {row['wall_s']:.3f} s, U_x {row['U_x_mm']:.8e} mm", flush=True)
-    OUT.parent.mkdir(exist_ok=True)
-    OUT.write_text(json.dumps(dict(beta=MATS.beta, a_mm=a, rows=rows), indent=1))
-    print(f"wrote {OUT}")
+    _record.write("coupled_step", dict(beta=MATS.beta, a_mm=a, rows=rows), args.output)
 
 
 if __name__ == "__main__":

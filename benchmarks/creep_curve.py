@@ -1,6 +1,6 @@
-"""Speed of a creep-force curve of the steady rolling solver (solver.creep; theory.md §7.3, §11.5).
+"""Speed of a creep-force curve of the steady rolling solver (solver.creep; docs/theory.md §7.3, §11.5).
 
-    .venv/bin/python benchmarks/creep_curve.py [--n 59 89 119] [--repeats 3] [--out ...]
+    .venv/bin/python benchmarks/creep_curve.py [--n 59 89 119] [--repeats 3] [-o DIR]
 
 Steel on steel (E = 210 GPa, nu = 0.28), Hertz ellipse a = 6 mm (rolling direction), b = 4 mm, Fn = 50 kN,
 mu = 0.3, n elements across each axis (`ellipse_grid`: (n + 2) x n cells). Measured per grid: the set-up
@@ -11,19 +11,16 @@ solver's default tolerance. Wall time and CPU time (process_time: the machine is
 waiting for a core), medians of --repeats, after a warm-up solve (numba compiled, cached on disk); the floor is
 one FFT tangential product (bem HalfSpaceOperator.tangential) on the same grid, measured in the same run.
 Also the curve's largest difference to Vermeulen-Johnson's saturation model. JSON to
-benchmarks/results/creep_curve.json.
+DIR/creep_curve.json (default results/benchmarks/).
 """
-import argparse
-import json
 import math
-import platform
 import statistics
 import time
-from pathlib import Path
 
 import numpy as np
 
-from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
+import _record
+from rollcontact.bem import HalfSpaceOperator, MaterialPair
 from rollcontact.solver.creep import (SteadyRolling, creep_curve, ellipse_grid, hertz_pressure,
                                       kalker_coefficients, saturation_creepage, solve_steady, vermeulen_johnson)
 
@@ -73,17 +70,12 @@ def run(n, repeats):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--n", type=int, nargs="+", default=[59, 89, 119], help="elements across each axis")
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--out", type=Path, default=Path(__file__).parent / "results" / "creep_curve.json")
     args = ap.parse_args(argv)
     rows = [run(n, args.repeats if n <= 60 else 1) for n in args.n]
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text(json.dumps({"rows": rows, "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
-                                    "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
-                                    "command": "benchmarks/creep_curve.py --n " + " ".join(map(str, args.n))
-                                    + f" --repeats {args.repeats}"}, indent=1))
+    _record.write("creep_curve", {"rows": rows}, args.output)
 
 
 if __name__ == "__main__":

@@ -1,20 +1,19 @@
-"""Accuracy of the steady rolling solver in the linear limit against Kalker's table (theory.md §7.3).
+"""Accuracy of the steady rolling solver in the linear limit against Kalker's table (docs/theory.md §7.3).
 
-    .venv/bin/python benchmarks/creep_linear.py [--n 21 41 81] [--out benchmarks/results/creep_linear.json]
+    .venv/bin/python benchmarks/creep_linear.py [--quick] [--n 21 41 81] [-o DIR]
 
 For a/b = 0.5, 1, 2 and nu = 0, 0.25, 0.5 (identical bodies, G = 1 MPa: K = 0), on the Hertzian ellipse with n
 elements across each axis (`solver.creep.ellipse_grid`, cells whose centre is inside the ellipse), no friction
 limit (full adhesion): C11 = -Fx/(G c^2 xi), C22 = -Fy/(G c^2 eta), C23 = -Fy/(G c^3 phi) and
 C33 = -Mz/(G c^4 phi), c = sqrt(a b), against the table (C11-C23, CONTACT's interpolation) and the published C33
 values. Also the error after correcting the discrete contact area: c^2 -> (cells in contact) dA / pi.
-Prints a table and writes JSON (errors in %, sweeps, seconds per solve).
+Prints a table and writes DIR/creep_linear.json (default results/benchmarks/; errors in %, sweeps, seconds per
+solve).
 """
-import argparse
-import json
 import math
 import time
-from pathlib import Path
 
+import _record
 from rollcontact.bem import MaterialPair
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, ellipse_grid, hertz_pressure,
                                       kalker_coefficients, solve_steady)
@@ -43,13 +42,13 @@ def coefficients(ratio, nu, n, tol=1e-8):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--n", type=int, nargs="+", default=[21, 41, 81], help="elements across each axis (odd)")
-    ap.add_argument("--out", type=Path, default=Path(__file__).parent / "results" / "creep_linear.json")
+    ap.add_argument("--quick", action="store_true", help="the circle with nu = 0.25 only")
     args = ap.parse_args(argv)
     rows = []
-    for ratio in RATIOS:
-        for nu in NUS:
+    for ratio in (1.0,) if args.quick else RATIOS:
+        for nu in (0.25,) if args.quick else NUS:
             table = kalker_coefficients(ratio, nu)
             for n in args.n:
                 c11, c22, c23, c33, sweeps, seconds, area = coefficients(ratio, nu, n)
@@ -64,10 +63,7 @@ def main(argv=None):
                       f"({err[1]:+5.2f}%)  C23 {c23:6.3f} ({err[2]:+5.2f}%)  C33 {c33:6.3f} (pub "
                       f"{C33_PUBLISHED[(ratio, nu)]:5.3f}, {100 * (c33 / C33_PUBLISHED[(ratio, nu)] - 1):+5.1f}%)  "
                       f"area {100 * (area - 1):+5.2f}%  {sweeps} sweeps {seconds:.2f} s", flush=True)
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text(json.dumps({"rows": rows, "date": time.strftime("%Y-%m-%d"),
-                                    "command": "benchmarks/creep_linear.py --n " + " ".join(map(str, args.n))},
-                                   indent=1))
+    _record.write("creep_linear", {"rows": rows}, args.output)
 
 
 if __name__ == "__main__":

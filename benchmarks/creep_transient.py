@@ -1,7 +1,7 @@
 """Transient rolling on the world-fixed grid (solver.creep.world) against the steady state: forces against the
-rolled distance, and the time per step (theory.md §6, §11.5; docs/creep_rolling.md, "Transient on the world grid").
+rolled distance, and the time per step (docs/theory.md §6, §11.5; docs/creep_rolling.md, "Transient on the world grid").
 
-    .venv/bin/python benchmarks/creep_transient.py [--n 41 61] [--lengths 8] [--initial rest cattaneo] [--out ...]
+    .venv/bin/python benchmarks/creep_transient.py [--quick] [--n 41 61] [--lengths 8] [--initial rest cattaneo] [-o DIR]
 
 Steel on steel (E = 210 GPa, nu = 0.28), a sphere R = 40 mm under Fn = 1000 N (Hertz a = 0.641 mm), mu = 0.3,
 xi = 5e-4, eta = 2e-4, phi = 1e-3 1/mm (partial slip, |F| = 0.29 mu Fn), n elements across the contact diameter
@@ -10,17 +10,14 @@ contact's path. The steady reference: solve_steady on a contact-fixed grid of th
 own normal solve. Per contact length rolled: Fx, Fy, Mz relative to the steady ones; the time per step (wall, and
 CPU by time.process_time: the machine is shared) after a warm-up of two steps (numba compiled or loaded from its
 cache), and the total; products (FFT convolution pairs) per step, normal and tangential. JSON to
-benchmarks/results/creep_transient.json.
+DIR/creep_transient.json (default results/benchmarks/).
 """
-import argparse
-import json
 import math
-import platform
 import time
-from pathlib import Path
 
 import numpy as np
 
+import _record
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.solver.creep import SteadyParams, SteadyRolling, roll_world, solve_steady
 from rollcontact.solver.normal import solve_normal
@@ -66,12 +63,14 @@ def run(n, lengths, initial):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--n", type=int, nargs="+", default=[41, 61])
     ap.add_argument("--lengths", type=int, default=8)
     ap.add_argument("--initial", nargs="+", default=["rest"])
-    ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "creep_transient.json"))
+    ap.add_argument("--quick", action="store_true", help="n = 41 from rest over one contact length")
     args = ap.parse_args()
+    if args.quick:
+        args.n, args.lengths, args.initial = [41], 1, ["rest"]
     results = []
     for n in args.n:
         for initial in args.initial:
@@ -85,9 +84,7 @@ def main():
             for row in r["rows"]:
                 print(f"  {row['lengths']} lengths ({row['distance']:.4f} mm): Fx {100 * row['dFx']:+.4f} %, Fy "
                       f"{100 * row['dFy']:+.4f} % of |F|, Mz {100 * row['dMz']:+.4f} %")
-    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.out).write_text(json.dumps(dict(machine=platform.processor() or platform.machine(),
-                                              date=time.strftime("%Y-%m-%d"), creep=CREEP, results=results), indent=1))
+    _record.write("creep_transient", dict(creep=CREEP, results=results), args.output)
 
 
 if __name__ == "__main__":

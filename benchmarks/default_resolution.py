@@ -1,6 +1,7 @@
 """Which resolution is the scene default: u_sd over the seed's Fig. 8 family at a/dx = 6 and 12.
 
-    .venv/bin/python benchmarks/default_resolution.py   (writes benchmarks/results/default_resolution.json)
+    .venv/bin/python benchmarks/default_resolution.py [-o DIR]   (writes DIR/default_resolution.json, default
+    results/benchmarks/)
 
 For every shakedown run of the paper-resolution sweep (benchmarks/results/sweep_paper.json: dx = dW = 0.2 mm,
 f_t 0.1-0.9, w 0.1/0.23/0.4, both alignments), the same scene is rerun at dx = dW = 0.8 mm (a/dx = 6, the
@@ -8,12 +9,12 @@ cheapest setting within 1 % at the paper's point alone) and 0.4 mm (a/dx = 12), 
 with the paper-resolution value (itself within 3e-4 of the Richardson-extrapolated one). The recommended
 default is the coarser of the two whose worst deviation stays below 1 % with no change of state.
 """
-import argparse
 import json
 import tempfile
 import time
 from pathlib import Path
 
+import _record
 from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 
@@ -22,7 +23,7 @@ SETTINGS = [(0.8, 0.8, 1e-4), (0.4, 0.4, 1e-4)]
 
 
 def main():
-    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no stray options
+    args = _record.parser(__doc__).parse_args()
     sweep = json.loads((HERE / "results" / "sweep_paper.json").read_text())
     refs = [r for r in sweep["rows"] if r["state"] == "shakedown"]
     tmp = Path(tempfile.mkdtemp())
@@ -49,7 +50,7 @@ def main():
         print(f"dx = dW = {dx} mm (a/dx = {entry['a_over_dx']}), tol {tol}: {len(rows)} runs, worst |dev| "
               f"{100 * max(devs):.2f} % at f_t = {worst['ft']}, w = {worst['w']}, angle {worst['angle']}; "
               f"state changes {entry['state_changes']}; {wall:.1f} s in all")
-    (HERE / "results" / "default_resolution.json").write_text(json.dumps(out, indent=1))
+    _record.write("default_resolution", out, args.output)
 
 
 if __name__ == "__main__":

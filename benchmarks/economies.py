@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/economies.py [--repeats 3]
 
-1. Grid sized to the swept contact (cases.run.scene_grid: contact box of every centre the path visits plus
+1. Grid sized to the swept contact (cases.run.discretise.scene_grid: contact box of every centre the path visits plus
    grid.margin): element counts for W = 1.2 ... 3.4 mm (the seed's range, dx = dy = 0.2 mm), both
    alignments, against the seed's 3050-4200 elements and against a naive square grid that covers the swept
    region in both directions ([-a - W - m, a + W + m]^2); the padded FFT size (what a product costs) too.
@@ -17,12 +17,10 @@
    interpreter start-up included), the closed forms in-process, `simulate_mdr` of the scene (10 periods) and
    `rollcontact run --set solver.fidelity=mdr`, against the 3-D run of the same scene.
 
-JSON to benchmarks/results/economies.json. Times: medians of --repeats on a shared 2-core machine (noisy).
+JSON to DIR/economies.json (-o DIR, default results/benchmarks/). Times: medians of --repeats on a shared 2-core machine (noisy).
 """
 from __future__ import annotations
 
-import argparse
-import json
 import math
 import statistics
 import subprocess
@@ -33,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+import _record
 from rollcontact.bem.operator import HalfSpaceOperator, fft_length
 from rollcontact.cases.run.discretise import scene_grid, scene_path
 from rollcontact.cases.run.scene_run import run_scene
@@ -40,7 +39,6 @@ from rollcontact.cases.scene.scene import default_scene
 from rollcontact.solver.mdr import limits as lim
 from rollcontact.solver.mdr.simulate import simulate_mdr
 
-RESULTS = Path(__file__).parent / "results"
 ROOT = Path(__file__).resolve().parents[1]
 SEED_ELEMENTS = (3050, 4200)
 
@@ -58,7 +56,7 @@ def grid_economy():
     rows = []
     for W in (1.2, 2.0, 3.4):
         for angle in (90, 0):
-            scene = default_scene().with_overrides([f"motion.W={W}", f"motion.angle={angle}"])
+            scene = default_scene().with_overrides([f"motion.W={W}", f"motion.angle={angle}"], replaces=("motion.W",))
             path = scene_path(scene)
             g = scene_grid(scene, path)
             a, m, dx = scene.contact_radius, scene.grid.margin, scene.grid.dx
@@ -167,16 +165,13 @@ def mdr_economy(repeats):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args()
     result = dict(benchmark="economies", note="times: medians on a shared 2-core machine, noisy",
                   grid=grid_economy(), coupling=coupling_economy(args.repeats), snapshots=snapshot_economy(),
                   mdr=mdr_economy(args.repeats))
-    out = RESULTS / "economies.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(result, indent=1, default=float))
-    print(f"wrote {out}")
+    _record.write("economies", result, args.output)
 
 
 if __name__ == "__main__":

@@ -6,17 +6,16 @@ it may climb to z = 0) and
 on the surface (a 1e-4 a scan of y = 0, the edges x = -a, +a taken 1e-9 a below the surface), and the friction
 coefficient at which the surface maximum overtakes the one below (Brent's method, 1e-6). Then the same maxima on the
 default grid (a/dx = 12, cell-averaged Hertz pressure; depths 0 ... a in steps of a/100) from bem.subsurface, beside
-Hamilton's at the same cell centres. JSON to benchmarks/results/hamilton_sliding.json.
+Hamilton's at the same cell centres. First, the frictionless Hertz axis on that grid against the closed forms
+(docs/theory.md §11.6). --quick: mu = 0.3 only. JSON to DIR/hamilton_sliding.json (-o DIR, default results/benchmarks/).
 """
 import argparse
-import json
-import os
 from pathlib import Path
-import time
 
 import numpy as np
 from scipy.optimize import brentq, minimize
 
+import _record
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.subsurface import SubsurfaceStresses, invariants
 from rollcontact.solver.hamilton import hamilton_stresses
@@ -54,6 +53,27 @@ def _cell_averaged_hertz(grid, sub=16):
     return p / sub**2
 
 
+def hertz_axis(n=15):
+    """Frictionless Hertz (a = p0 = 1, nu = 0.3) on the default grid a/12: the largest error of sigma_r and sigma_z on
+    the axis (z = 0 ... 2a, 101 depths) against the closed forms of docs/theory.md §11.6, in units of p0, and the
+    maxima of the max shear and von Mises on the axis with the depth of the max shear."""
+    g = Grid(2 * n + 1, 2 * n + 1, 1 / 12, 1 / 12, -n, -n)
+    p = _cell_averaged_hertz(g)
+    op = SubsurfaceStresses(g, NU)
+    op.set_tractions(p, 0 * p, 0 * p)
+    depths = np.linspace(0.0, 2.0, 101)
+    axis = np.array([op.layer(z)[:, n, n] for z in depths]).T
+    with np.errstate(divide="ignore"):
+        s_r = -((1 + NU) * (1 - np.where(depths > 0, depths * np.arctan(1 / np.where(depths > 0, depths, 1)), 0.0))
+                - 0.5 / (1 + depths**2))
+    s_z = -1 / (1 + depths**2)
+    error = max(float(np.abs(axis[0] - s_r).max()), float(np.abs(axis[1] - s_r).max()), float(np.abs(axis[2] - s_z).max()))
+    inv = invariants(axis)
+    k = int(np.argmax(inv["tresca"]))
+    return {"axis_error": error, "tresca_max": float(inv["tresca"][k]), "tresca_depth": float(depths[k]),
+            "von_mises_max": float(inv["von_mises"].max())}
+
+
 def on_grid(mu, n=18):
     """Grid maxima (value, z, x, y) of von Mises and Tresca, and Hamilton's at the same cell centres."""
     g = Grid(2 * n + 1, 2 * n + 1, 1 / 12, 1 / 12, -n, -n)
@@ -80,10 +100,16 @@ def on_grid(mu, n=18):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("--mu", type=float, nargs="+", default=[0.0, 0.1, 0.2, 0.3, 0.4, 0.5],
+    parser.add_argument("--mu", type=float, nargs="+", default=None,
                         help="friction coefficients (default 0 0.1 0.2 0.3 0.4 0.5)")
-    parser.add_argument("--out", default=str(HERE / "results" / "hamilton_sliding.json"), help="JSON output")
+    parser.add_argument("--quick", action="store_true", help="mu = 0.3 only")
+    _record.add_output(parser)
     args = parser.parse_args(argv)
+    args.mu = args.mu or ([0.3] if args.quick else [0.0, 0.1, 0.2, 0.3, 0.4, 0.5])
+    hertz = hertz_axis()
+    print(f"Hertz on the axis, a/dx = 12: sigma_r, sigma_z within {hertz['axis_error']:.5f} p0 of the closed form; "
+          f"max shear {hertz['tresca_max']:.4f} p0 at z = {hertz['tresca_depth']:.2f} a, von Mises "
+          f"{hertz['von_mises_max']:.4f} p0", flush=True)
     rows = []
     for mu in args.mu:
         row = {"mu": mu}
@@ -100,10 +126,8 @@ def main(argv=None):
     switches = {name: switch(name) for name in ("von_mises", "tresca")}
     print(f"the surface maximum overtakes the one below at mu = {switches['von_mises']:.4f} (von Mises), "
           f"{switches['tresca']:.4f} (Tresca)")
-    result = {"date": time.strftime("%Y-%m-%d"), "load": os.getloadavg()[0], "nu": NU, "rows": rows,
-              "switch_mu": switches}
-    Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {args.out}")
+    result = {"nu": NU, "hertz_axis": hertz, "rows": rows, "switch_mu": switches}
+    _record.write("hamilton_sliding", result, args.output)
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
-"""Benchmark of the MDR fidelity level (solver.mdr, solver.mdr.bisection, solver.mdr.limits; theory.md §8).
+"""Benchmark of the MDR fidelity level (solver.mdr, solver.mdr.bisection, solver.mdr.limits; docs/theory.md §8).
 
-Run:  .venv/bin/python benchmarks/mdr.py
-Writes benchmarks/results/mdr.json and prints the Markdown tables of benchmarks/README.md "## MDR model".
+Run:  .venv/bin/python benchmarks/mdr.py [-o DIR]
+Writes DIR/mdr.json (default results/benchmarks/) and prints the Markdown tables of benchmarks/README.md "## MDR model".
 
 * time per 10-period run (median of 7 warm runs; the first call of the process is reported separately:
   it loads the numba on-disk cache, or compiles if there is none), for 1001 and 4001 springs,
@@ -12,19 +12,16 @@ Writes benchmarks/results/mdr.json and prints the Markdown tables of benchmarks/
 """
 from __future__ import annotations
 
-import argparse
-import json
 import os
-import platform
 import statistics
 import sys
 import time
 
-import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 
+import _record  # noqa: E402
 from rollcontact.bem.materials import MaterialPair  # noqa: E402
 from rollcontact.solver.mdr import limits as L  # noqa: E402
 from rollcontact.solver.analytic import HertzSphere  # noqa: E402
@@ -107,14 +104,10 @@ def fmt(x, spec=".6f"):
 
 
 def main():
-    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # --help, and no stray options
-    res = dict(machine=dict(python=platform.python_version(), processor=platform.processor() or platform.machine(),
-                            numpy=np.__version__),
-               scene=dict(SCENE, a=A), timing=timing(), closed_forms=closed_forms(),
+    args = _record.parser(__doc__).parse_args()
+    res = dict(scene=dict(SCENE, a=A), timing=timing(), closed_forms=closed_forms(),
                simulator_vs_eq12=simulator_vs_eq12(), limits=limits())
-    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
-    with open(os.path.join(HERE, "results", "mdr.json"), "w") as fh:
-        json.dump(res, fh, indent=1)
+    _record.write("mdr", res, args.output)
 
     print("Time per 10-period run (w = 0.23, f_t = 0.46, dW = W/50):\n")
     print("| springs | steps | first call (s) | median warm (s) | us/step |\n|---|---|---|---|---|")

@@ -1,6 +1,6 @@
-"""Benchmark of the normal solver (solver/normal.py, NormCG) on the Hertz sphere of the seed's scene.
+"""Benchmark of the normal solver (solver/normal/normcg.py, NormCG) on the Hertz sphere of the seed's scene.
 
-Scene (theory.md §7.1): R = 40 mm, E1 = 206e3 MPa, nu1 = 0.3, E2 = 4.35 MPa, nu2 = 0.5, Fn = 21.19 N
+Scene (docs/theory.md §7.1): R = 40 mm, E1 = 206e3 MPa, nu1 = 0.3, E2 = 4.35 MPa, nu2 = 0.5, Fn = 21.19 N
 (a = 4.7857 mm, d = 0.572572 mm, p0 = 0.441756 MPa). Square grids of n^2 cells with dx chosen so that
 the contact diameter fills 65 % of the grid width, plus the paper's own grid (dx = 0.2 mm covering
 1.25 a). For each grid:
@@ -12,18 +12,14 @@ the contact diameter fills 65 % of the grid width, plus the paper's own grid (dx
   `inv`: one `op.normal_inverse`; `t/it / pair` = solve time / iterations / pair time (the whole solve,
   including the initial A p and any extra A p recomputations after large active-set changes, whose
   number is reported as `extra`);
-* errors against Hertz: approach, peak pressure, contact area (cells with p > 0, pitfall P11).
+* errors against Hertz: approach, peak pressure, contact area (cells with p > 0, docs/theory.md P11).
 
-Usage: .venv/bin/python benchmarks/normal_hertz.py [--quick] [--repeat N] [--sizes 64 128 ...]
-Writes benchmarks/results/normal_hertz.json and prints a Markdown table.
+Usage: .venv/bin/python benchmarks/normal_hertz.py [--quick] [--repeat N] [--sizes 64 128 ...] [-o DIR]
+Writes DIR/normal_hertz.json (default results/benchmarks/; the committed one: -o benchmarks/results) and prints a
+Markdown table.
 """
-import argparse
-import json
 import math
-import os
-import platform
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -32,6 +28,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
+
+import _record  # noqa: E402
 
 from rollcontact.bem.grid import Grid  # noqa: E402
 from rollcontact.bem.materials import MaterialPair  # noqa: E402
@@ -141,12 +139,11 @@ def markdown(rows, command):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = _record.parser(__doc__)
     parser.add_argument("--quick", action="store_true", help="sizes 64, 128, 256 and the paper grid, 3 runs")
     parser.add_argument("--repeat", type=int, default=5, help="runs per timing (median), >= 3")
     parser.add_argument("--sizes", type=int, nargs="*", default=None)
     parser.add_argument("--tol", type=float, default=NormalParams().tol)
-    parser.add_argument("--output", default=str(ROOT / "benchmarks" / "results" / "normal_hertz.json"))
     args = parser.parse_args(argv)
     sizes = args.sizes or ([64, 128, 256] if args.quick else [64, 128, 256, 512, 1024])
     repeat = 3 if args.quick else max(3, args.repeat)
@@ -164,16 +161,10 @@ def main(argv=None):
         print(rows[-1], flush=True)
 
     command = "benchmarks/normal_hertz.py " + " ".join(argv if argv is not None else sys.argv[1:])
-    cpu = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
-    model = next((ln.split(":", 1)[1].strip() for ln in cpu.splitlines() if ln.startswith("Model name")), "")
     out = dict(benchmark="normal_hertz", command=command.strip(), tol=args.tol, repeat=repeat,
-               machine=dict(cpu=model, cores=os.cpu_count(), python=platform.python_version()),
                hertz=dict(a=HERTZ.a, approach=HERTZ.approach, p0=HERTZ.p0), fill=FILL, rows=rows)
-    path = Path(args.output)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(out, indent=1))
+    _record.write("normal_hertz", out, args.output)
     print(markdown(rows, command.strip()))
-    print(f"\nwritten {path}")
 
 
 if __name__ == "__main__":

@@ -1,8 +1,8 @@
 """Mindlin-Deresiewicz cycles on the paper's grid: the cost of one period of an oscillating tangential force
-without rolling, and its accuracy against the closed forms (theory.md §11.2).
+without rolling, and its accuracy against the closed forms (docs/theory.md §11.2).
 
-    .venv/bin/python benchmarks/oscillating_loads.py [--repeats 5] [--periods 4] [--out benchmarks/results/oscillating_loads.json]
-    .venv/bin/python benchmarks/oscillating_loads.py --accuracy [--out benchmarks/results/oscillating_loads_accuracy.json]
+    .venv/bin/python benchmarks/oscillating_loads.py [--quick] [--repeats 5] [--periods 4] [-o DIR]   # DIR/oscillating_loads.json
+    .venv/bin/python benchmarks/oscillating_loads.py --accuracy [--quick] [-o DIR]   # DIR/oscillating_loads_accuracy.json
 
 The paper scene (`cases.scene.default_scene`: its materials, Fn, mu, dx = 0.2 mm) with motion.w = 0, load.ft = 0
 and load.ft_amplitude = x for x = 0.3, 0.6, 0.9 (Ft = x mu Fn sin(2 pi k/24), 24 steps per period, the default),
@@ -17,25 +17,24 @@ cache, FFTW wisdom), --repeats runs round robin; reported as medians:
 * accuracy of the last period: the largest |U - U_MD| over it relative to U(F*), and the frictional work of the
   period (/summary dissipation_per_period) against the Mindlin-Deresiewicz loop area
   4 mu Fn U0 [6/5 - x - x(1-x)^(2/3) - (6/5)(1-x)^(5/3)]; the paper's nu2 = 0.5 makes Mindlin's closed form a few
-  0.1 % off in U (pitfall P10), more in the loop area (docs/oscillating_loads.md).
+  0.1 % off in U (docs/theory.md P10), more in the loop area (docs/oscillating_loads.md).
 
 --accuracy instead: (1) the Mindlin-Deresiewicz cycle (2 periods of 24 steps, the second compared) on the
 scene's default grid for the amplitude (grid.dx left out: 4 elements across the slip annulus, at least a/12,
 cases.scene.limits) and at dx = 0.4 / 0.2 / 0.1 mm (a/12, a/24, a/48) for the paper's materials and for two identical bodies with nu = 0 and
 the same E* (where the closed form is exact), the loop error max |U - U_MD| / U(F*) and the frictional work of the
-cycle against the closed form; (2) four histories of varying Fn and Ft without rolling on the default grid (a/12),
+cycle against the closed form; (2) four histories of varying Fn and Ft without rolling on the default grid,
 the 3-D U against the 1-D MDR model with per-spring memory (max |U_3D - U_MDR| / max |U_MDR|) and the work per
-period of both (theory §11.3); (3) the same with rolling at w = 0.23, both settings, where the MDR is not exact.
+period of both (docs/theory.md §11.3); (3) the same with rolling at w = 0.23, both settings, where the MDR is not exact.
+--accuracy --quick: only x = 0.6 on the default grid and the Mindlin-Deresiewicz history without rolling (seconds).
 """
 import argparse
-import json
-import os
 from pathlib import Path
 import statistics
-import time
 
 import numpy as np
 
+import _record
 from rollcontact.cases import api
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 
@@ -70,13 +69,14 @@ HISTORIES = {"proportional (Ft = 0.3 mu Fn(t), Fn 0.5-1.5 Fn)":
              "Ft 0 +- 0.6 (Mindlin-Deresiewicz)": {"load.ft": 0.0, "load.ft_amplitude": 0.6}}
 
 
-def accuracy_tables():
-    """The --accuracy tables (see the module docstring) as lists of dicts, printed as they come."""
+def accuracy_tables(quick=False):
+    """The --accuracy tables (see the module docstring) as lists of dicts, printed as they come; `quick`: x = 0.6 on
+    the default grid and the Mindlin-Deresiewicz history without rolling only."""
     md, hist = [], []
     base = {"motion.w": 0, "motion.periods": 2, "load.ft": 0, "output.fields": "none"}
-    for dx in ("default", 0.4, 0.2, 0.1):
+    for dx in ("default",) if quick else ("default", 0.4, 0.2, 0.1):
         for name, mats in (("nu = 0", NU0), ("paper", {})):
-            for x in AMPLITUDES:
+            for x in (0.6,) if quick else AMPLITUDES:
                 over = {**base, **mats, "load.ft_amplitude": x}
                 if dx == "default":   # the paper scene without grid.dx: cases.scene.limits' default for the amplitude
                     scene = rollcontact_scene({**PAPER, **over})
@@ -88,9 +88,11 @@ def accuracy_tables():
                 print(f"MD {name:6s} dx = {dx} ({scene.grid.dx} mm): x = {x}: loop {100 * loop:.3f} %, work "
                       f"{100 * work:+.3f} %", flush=True)
     plain = {"geometry.R": 40.0, "motion.periods": 2, "output.fields": "none"}
-    for w, angle in ((0.0, 90.0), (0.23, 0.0), (0.23, 90.0)):
+    for w, angle in ((0.0, 90.0),) if quick else ((0.0, 90.0), (0.23, 0.0), (0.23, 90.0)):
         for name, mats in (("nu = 0", NU0), ("paper", {})):
             for label, loads in HISTORIES.items():
+                if quick and "Mindlin" not in label:
+                    continue
                 over = {**plain, **mats, **loads, "motion.w": w, "motion.angle": angle}
                 scene = rollcontact_scene(over)
                 bem, mdr = api.run(scene), api.run(scene.with_overrides({"solver.fidelity": "mdr"}))
@@ -121,16 +123,16 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per amplitude (median; default 5)")
     parser.add_argument("--periods", type=int, default=4, help="periods per run (default 4)")
-    parser.add_argument("--out", default=str(HERE / "results" / "oscillating_loads.json"), help="JSON output")
+    _record.add_output(parser)
     parser.add_argument("--accuracy", action="store_true", help="the accuracy tables instead of the timing")
+    parser.add_argument("--quick", action="store_true", help="timing: 1 repeat of 2 periods; --accuracy: a subset")
     args = parser.parse_args(argv)
+    if args.quick:
+        args.repeats, args.periods = 1, 2
     if args.accuracy:
-        md, hist = accuracy_tables()
-        out = args.out if args.out != parser.get_default("out") else str(HERE / "results" /
-                                                                           "oscillating_loads_accuracy.json")
-        Path(out).write_text(json.dumps({"date": time.strftime("%Y-%m-%d"), "mindlin_deresiewicz": md,
-                                         "mdr": hist}, indent=1) + "\n")
-        print(f"written to {out}")
+        md, hist = accuracy_tables(args.quick)
+        _record.write("oscillating_loads_accuracy", {"quick": args.quick, "mindlin_deresiewicz": md, "mdr": hist},
+                      args.output)
         return
     scenes = {x: api.load_scene(overrides={"motion.w": 0, "load.ft": 0, "load.ft_amplitude": x,
                                            "motion.periods": args.periods, "output.fields": "none"})
@@ -173,9 +175,7 @@ def main(argv=None):
               f"{row['tangential_it_per_step']:.1f}, floor {floor:.3f} s, wall/floor {row['wall_over_floor']:.2f}; "
               f"loop max|U - U_MD|/U* = {100 * loop:.3f} %, work per period {row['dissipation_per_period']:.5g} N mm "
               f"({100 * work:+.2f} % against the closed form)", flush=True)
-    result = {"date": time.strftime("%Y-%m-%d"), "repeats": args.repeats, "load": os.getloadavg()[0], "rows": rows}
-    Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {args.out}")
+    _record.write("oscillating_loads", {"repeats": args.repeats, "rows": rows}, args.output)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """Rolling at the paper's resolution: cost per rolling step of the nested normal/tangential iteration.
 
-    .venv/bin/python benchmarks/rolling_paper.py [--repeats 3] [--out benchmarks/results/rolling_paper.json]
+    .venv/bin/python benchmarks/rolling_paper.py [--repeats 3] [-o DIR]    # DIR/rolling_paper.json
 
 The seed scene (`cases.scene.default_scene`, dx = dW = 0.2 mm, 10 periods) in both settings
 (motion.angle = 0: rolling parallel to Ft; 90: perpendicular) at (f_t, w) = (0.46, 0.23) (shakedown) and
@@ -20,8 +20,6 @@ after that run (the mean of the two medians of 50), and reported as the median o
 gives the ratio against the simpler floor (all products x t_n). Timings on a shared 2-core machine are noisy
 by 10-40 %: the per-run ratios are listed.
 """
-import argparse
-import json
 import statistics
 import tempfile
 import time
@@ -29,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+import _record
 from rollcontact.cases.run.discretise import scene_grid, scene_path
 from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
@@ -102,9 +101,8 @@ class Case:
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--out", default=str(Path(__file__).parent / "results" / "rolling_paper.json"))
     ap.add_argument("--only", type=int, default=None, help="run only case index 0..3")
     args = ap.parse_args()
     rows = []
@@ -126,7 +124,7 @@ def main():
                   f"ratio {row['ratio']:.2f} (runs {', '.join(f'{x:.2f}' for x in row['ratios'])}) "
                   f"(all-pairs {row['ratio_all_pairs']:.2f})", flush=True)
     if args.only is None:
-        Path(args.out).write_text(json.dumps(rows, indent=1))
+        _record.write("rolling_paper", {"rows": rows}, args.output)
 
 
 if __name__ == "__main__":

@@ -7,16 +7,16 @@ motion.dW = dx (mm); the step used is W/ceil(W/dx), so every rolling step moves 
 cell: the "small profile change" after which issue #3 asks for <= 15 products per warm-started step. For each (f_t, dx): the run's state, the tangential products
 (every `op.tangential` call, re-synchronisations included) per rolling step (period >= 1; mean, median, 90th
 percentile, max, share of steps at <= 15), normal iterations per step and the wall time of the whole run (one
-FFTW thread, shared machine: indicative). JSON to benchmarks/results/rolling_refinement.json.
+FFTW thread, shared machine: indicative). JSON to DIR/rolling_refinement.json (-o DIR, default
+results/benchmarks/).
 """
-import argparse
-import json
 from pathlib import Path
 import tempfile
 import time
 
 import numpy as np
 
+import _record
 from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 
@@ -41,7 +41,7 @@ def measure(dx, ft, angle, periods):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1, 0.05])
     ap.add_argument("--ft", type=float, nargs="*", default=[0.46, 0.77])
     ap.add_argument("--angle", type=float, default=90.0)
@@ -58,10 +58,7 @@ def main():
                   f"p90 {row['tangential_p90']:.0f} max {row['tangential_max']}, "
                   f"{row['share_at_most_15']:.0%} at <= 15; normal {row['normal_mean']:.1f}; "
                   f"wall {row['wall_s']:.1f} s", flush=True)
-    out = Path(__file__).parent / "results" / "rolling_refinement.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps({"benchmark": "rolling_refinement", "rows": rows}, indent=1))
-    print(f"wrote {out}")
+    _record.write("rolling_refinement", {"benchmark": "rolling_refinement", "rows": rows}, args.output)
 
 
 if __name__ == "__main__":

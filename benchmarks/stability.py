@@ -1,6 +1,6 @@
 """Stability map over the hard regimes of the contact solvers (issue #7).
 
-    .venv/bin/python benchmarks/stability.py [--quick] [--only GROUP[,GROUP]]
+    .venv/bin/python benchmarks/stability.py [--quick] [--only GROUP[,GROUP]] [-o DIR]
 
 Every case is run once and classified: 'converged' (to its stated tolerance, with the physics invariants
 checked: force balance, |tau| <= mu p (1 + 1e-9), p >= 0, no NaN), 'ConvergenceError' (with its message, which
@@ -25,11 +25,11 @@ mu = 0.93, tol = 1e-8):
               0.748 by the seed's kappa), dx = 0.4 -> 0.2 -> 0.1, dW = 0.2, 15 periods: convergence under
               refinement (Richardson order), against seed Eq. 13.
 
-JSON + PNG to benchmarks/results/stability.{json,png}. Wall times are single runs on a shared 2-core machine.
+JSON + PNG to DIR/stability.{json,png} (default results/benchmarks/; the committed chart: -o benchmarks/results).
+Wall times are single runs on a shared 2-core machine.
 """
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys
@@ -39,6 +39,7 @@ from pathlib import Path
 
 import numpy as np
 
+import _record
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.bem.errors import ConvergenceError, GrossSlidingError, RollcontactError
 from rollcontact.cases.run.scene_run import run_scene
@@ -51,7 +52,6 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 
 R, FN, MU, TOL = 40.0, 21.19, 0.93, 1e-8
 SCENE_PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
-RESULTS = Path(__file__).parent / "results"
 
 
 def invariants(pressure, traction, mu, force_t, dA, Fn):
@@ -139,7 +139,8 @@ def rolling_case(group, label, overrides, kappa=None, periods=None):
         if item.startswith("grid.dx=") and not any(o.startswith("grid.dy=") for o in overrides):
             overrides.append("grid.dy=" + item.split("=", 1)[1])
     scene = default_scene().with_overrides(overrides + ["output.fields=reversals"]
-                                           + ([f"motion.periods={periods}"] if periods else []))
+                                           + ([f"motion.periods={periods}"] if periods else []),
+                                           replaces=("motion.W",))   # the amplitude in mm, over the scene's w
     row = dict(group=group, label=label, kind="rolling", overrides=list(overrides), f_t=scene.f_t,
                w=scene.amplitude / scene.contact_radius, angle=scene.motion.angle, dx=scene.grid.dx,
                dW=scene.rolling_step, beta=scene.material_pair.beta, mu=scene.load.mu)
@@ -166,7 +167,6 @@ def rolling_case(group, label, overrides, kappa=None, periods=None):
     worst = None
     dA = (d.x[1] - d.x[0]) * (d.y[1] - d.y[0]) if len(d.x) > 1 else 0
     for i, step in enumerate(d.field_steps):
-        k = int(np.flatnonzero(np.asarray(h["step"]) == step)[0])
         inv = invariants(d.fields["p"][i], np.stack([d.fields["tau_x"][i], d.fields["tau_y"][i]]), scene.load.mu,
                          (scene.Ft * scene.load_direction[0], scene.Ft * scene.load_direction[1]), dA,
                          scene.load.Fn)
@@ -251,7 +251,7 @@ def g_coupled(quick):
         a = HertzSphere(R, pair.E_star, FN).a
         rows.append(show(static_case("coupled", f"E2={E2:g} nu2={nu2} beta={pair.beta:.3f} static", pair, R, R,
                                      FN, MU, 0.5, a / 12)))
-        ov = [f"materials.E1=210e3", "materials.nu1=0.3", f"materials.E2={E2}", f"materials.nu2={nu2}",
+        ov = ["materials.E1=210e3", "materials.nu1=0.3", f"materials.E2={E2}", f"materials.nu2={nu2}",
               f"grid.dx={a / 12}", f"motion.dW={a / 12}", f"grid.margin={3 * a / 12}"]
         rows.append(show(rolling_case("coupled", f"E2={E2:g} nu2={nu2} beta={pair.beta:.3f} rolling", ov,
                                       periods=2 if quick else 4)))
@@ -355,18 +355,19 @@ def chart(rows, path):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--only", default="", help="comma list of groups (default all): " + ",".join(GROUPS))
     ap.add_argument("--replot", action="store_true", help="redraw the PNG from the stored JSON, run nothing")
     args = ap.parse_args()
     if args.replot:
-        out = RESULTS / ("stability_quick.json" if args.quick else "stability.json")
+        out = args.output / ("stability_quick.json" if args.quick else "stability.json")
         chart(json.loads(out.read_text())["rows"], out.with_suffix(".png"))
         print(f"wrote {out.with_suffix('.png')}")
         return 0
     only = [g for g in args.only.split(",") if g] or list(GROUPS)
-    out = RESULTS / ("stability_quick.json" if args.quick else "stability.json")
+    name = "stability_quick" if args.quick else "stability"
+    out = args.output / f"{name}.json"
     old = json.loads(out.read_text())["rows"] if out.exists() and args.only else []
     rows = [r for r in old if r["group"] not in only]
     for g in only:
@@ -379,9 +380,8 @@ def main():
     summary = dict(counts=counts, near_limit=near_limit_summary(rows),
                    failures=[dict(group=r["group"], label=r["label"], status=r["status"], error=r.get("error"))
                              for r in rows if r["status"] not in ("converged",)])
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(dict(benchmark="stability", quick=args.quick, rows=rows, summary=summary,
-                                   note="single runs on a shared 2-core machine"), indent=1, default=float))
+    _record.write(name, dict(benchmark="stability", quick=args.quick, rows=rows, summary=summary,
+                             note="single runs on a shared 2-core machine"), args.output)
     png = out.with_suffix(".png")
     chart(rows, png)
     print(json.dumps(summary, indent=1, default=float))

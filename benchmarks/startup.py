@@ -1,6 +1,6 @@
 """Start-up: what a user waits for beyond the solve, timed as whole processes as a user meets them.
 
-    .venv/bin/python benchmarks/startup.py [--repeats 5] [--out benchmarks/results/startup.json]
+    .venv/bin/python benchmarks/startup.py [--repeats 5] [-o DIR]    # DIR/startup.json
 
 * `rollcontact --version`, `rollcontact --help` and `python -c "import rollcontact"`: process wall time, median of
   --repeats (targets 0.3 s, 0.3 s and 0.5 s); `python -c pass` is timed beside them (the interpreter's own start).
@@ -12,7 +12,6 @@
   figures for these scenes (issue #3): 5.7-6.0 s CPU in shakedown, 10.7-11.0 s ratcheting.
 """
 import argparse
-import json
 import os
 from pathlib import Path
 import statistics
@@ -22,6 +21,8 @@ import tempfile
 import time
 
 import h5py
+
+import _record
 
 HERE = Path(__file__).resolve().parent
 BIN = Path(sys.executable).parent
@@ -79,7 +80,7 @@ def main(argv=None):
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per case (median; default 5)")
     parser.add_argument("--skip-scenes", action="store_true", help="time the commands only")
-    parser.add_argument("--out", default=str(HERE / "results" / "startup.json"), help="JSON output")
+    _record.add_output(parser)
     args = parser.parse_args(argv)
     load = os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as tmp:
@@ -88,8 +89,8 @@ def main(argv=None):
         if not args.skip_scenes:
             result["paper_scenes"] = paper_scenes(args.repeats, tmp)
     result["load_after"] = os.getloadavg()[0]
-    Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {args.out} (load {load:.2f} -> {result['load_after']:.2f})")
+    _record.write("startup", result, args.output)
+    print(f"load {load:.2f} -> {result['load_after']:.2f}")
 
 
 if __name__ == "__main__":

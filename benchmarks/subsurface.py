@@ -1,7 +1,7 @@
 """What the subsurface stresses cost: one step on the paper's grid at the 30 default depths, and the memory of a
 256 x 256 x 64 block.
 
-    .venv/bin/python benchmarks/subsurface.py [--repeats 7] [--out benchmarks/results/subsurface.json]
+    .venv/bin/python benchmarks/subsurface.py [--repeats 7] [-o DIR]    # DIR/subsurface.json
 
 Measured:
 * warm, in this process after a warm-up (numba kernels loaded, FFTW plans from wisdom): one step = the tractions
@@ -15,7 +15,6 @@ Measured:
   same process stopped before the computation (imports done, file read), and the file's growth.
 """
 import argparse
-import json
 import os
 from pathlib import Path
 import statistics
@@ -25,6 +24,8 @@ import tempfile
 import time
 
 import numpy as np
+
+import _record
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -134,7 +135,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("--repeats", type=int, default=7, help="timed repeats (median; default 7)")
-    parser.add_argument("--out", default=str(HERE / "results" / "subsurface.json"), help="JSON output")
+    _record.add_output(parser)
     args = parser.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         paper = paper_step(args.repeats, tmp)
@@ -148,10 +149,7 @@ def main(argv=None):
         print(f"256 x 256 x 64: peak resident {memory['compute_peak_mb']:.0f} MB against "
               f"{memory['baseline_peak_mb']:.0f} MB before computing (+{memory['added_peak_mb']:.0f} MB), {memory['compute_s']:.1f} s, file +"
               f"{memory['file_growth_mb']:.0f} MB (uncompressed block {memory['block_mb_uncompressed']:.0f} MB)")
-    result = {"date": time.strftime("%Y-%m-%d"), "repeats": args.repeats, "load": os.getloadavg()[0],
-              "paper": paper, "memory_256x256x64": memory}
-    Path(args.out).write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written to {args.out}")
+    _record.write("subsurface", {"repeats": args.repeats, "paper": paper, "memory_256x256x64": memory}, args.output)
 
 
 if __name__ == "__main__":

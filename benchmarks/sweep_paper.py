@@ -1,6 +1,6 @@
-"""Benchmark: the seed's Fig. 8 sweep at paper resolution, and kappa fitted to it (seed Eq. 13, theory.md §8.4).
+"""Benchmark: the seed's Fig. 8 sweep at paper resolution, and kappa fitted to it (seed Eq. 13, docs/theory.md §8.4).
 
-    .venv/bin/python benchmarks/sweep_paper.py [--jobs 2] [--out results/sweep_paper] [--keep]
+    .venv/bin/python benchmarks/sweep_paper.py [--jobs 2] [--runs results/sweep_paper] [--keep] [-o DIR]
 
 Scene: the paper's Table 1 (cases/paper_perpendicular.toml: dx = dy = 0.2 mm, dW = 0.2 mm, 10 periods),
 f_t = 0.1 ... 0.9 by 0.1, w = W/a in {0.1, 0.23, 0.4}, rolling parallel (angle 0) and perpendicular (90) to
@@ -9,12 +9,10 @@ Ft: 54 runs through `cases.sweep.runner.run_sweep` on `--jobs` local processes. 
 
 Reports: total wall time (s), runs per minute, the states, and for each alignment kappa fitted by least
 squares to Eq. 13 over the shakedown runs (solver.mdr.limits.fit_kappa), beside the seed's 1 (parallel) and
-1.1 (perpendicular). JSON to benchmarks/results/sweep_paper.json; the run files stay in --out (ignored by git).
+1.1 (perpendicular). JSON to DIR/sweep_paper.json (default results/benchmarks/); the run files stay in --runs (ignored by git).
 """
 from __future__ import annotations
 
-import argparse
-import json
 import os
 from pathlib import Path
 import platform
@@ -22,6 +20,7 @@ import shutil
 import sys
 import time
 
+import _record
 from rollcontact.cases.scene.scene import Scene, shipped_scene_path
 from rollcontact.cases.sweep.runner import run_sweep
 from rollcontact.solver.mdr import limits as lim
@@ -31,13 +30,12 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--out", default=str(ROOT / "results" / "sweep_paper"), help="folder of the run files")
+    ap.add_argument("--runs", default=str(Path("results") / "sweep_paper"), help="folder of the run files")
     ap.add_argument("--keep", action="store_true", help="keep finished runs (resume) instead of starting afresh")
-    ap.add_argument("--json", default=str(ROOT / "benchmarks" / "results" / "sweep_paper.json"))
     args = ap.parse_args(argv)
-    out = Path(args.out)
+    out = Path(args.runs)
     if out.exists() and not args.keep:
         shutil.rmtree(out)
     base = Scene.from_toml(shipped_scene_path("paper_perpendicular.toml"))
@@ -65,8 +63,7 @@ def main(argv=None) -> int:
         rows=[{k: r[k] for k in ("load.ft", "motion.w", "motion.angle", "state", "u_sd", "du",
                                  "periods_to_shakedown", "steps", "iterations", "wall_time", "error")}
               for r in rows])
-    Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.json).write_text(json.dumps(result, indent=1) + "\n")
+    _record.write("sweep_paper", result, args.output)
     print(f"{report.planned} runs ({report.ran} run, {report.failed} failed) on {args.jobs} jobs: "
           f"{wall:.1f} s, {result['runs_per_minute'] or 0:.1f} runs/min; load average before/after "
           f"{load_before[0]:.2f}/{load_after[0]:.2f}")

@@ -1,6 +1,6 @@
-"""Benchmark of the transient tangential solver on the seed's Cattaneo scene (theory.md §5, §7.2).
+"""Benchmark of the transient tangential solver on the seed's Cattaneo scene (docs/theory.md §5, §7.2).
 
-    .venv/bin/python benchmarks/tangential_cattaneo.py [--repeats 5]
+    .venv/bin/python benchmarks/tangential_cattaneo.py [--repeats 5] [-o DIR]
 
 For dx = 0.2, 0.1, 0.05 mm (CONTACT's grids: 55^2, 109^2, 217^2) and 0.0211 mm (511^2): wall time (median of
 --repeats, single FFTW thread, after a warm-up solve so that numba compilation and FFTW planning are excluded),
@@ -9,16 +9,14 @@ iteration counts) cold (f_t = 0.5 from zero traction) and warm (f_t 0.5 -> 0.52;
 one cell in y at f_t = 0.5), the errors of the stick radius (along y = 0) and of the shift against Mindlin, the
 time of one op.tangential product measured
 in the same run, and the shift error near the traction bound (f_t = 0.9 .. 0.999). Pressure: solve_normal.
-JSON to benchmarks/results/tangential_cattaneo.json. Timings are medians on a shared 2-core machine: noisy.
+JSON to DIR/tangential_cattaneo.json (default results/benchmarks/). Timings are medians on a shared 2-core machine: noisy.
 """
-import argparse
-import json
 import statistics
 import time
-from pathlib import Path
 
 import numpy as np
 
+import _record
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 from rollcontact.solver.normal.normcg import solve_normal
@@ -91,7 +89,7 @@ def run(dx, repeats, near_bound):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = _record.parser(__doc__)
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1, 0.05, 0.0211])
     args = ap.parse_args()
@@ -107,12 +105,8 @@ def main():
               f"dc {row['stick_radius_error_mm']:+.3f} mm, dU {row['shift_error_rel']:+.3%}", flush=True)
         for f, v in row["near_bound"].items():
             print(f"    f_t={f}: {v}", flush=True)
-    out = Path(__file__).parent / "results" / "tangential_cattaneo.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps({"benchmark": "tangential_cattaneo", "rows": rows,
-                               "note": "wall times are medians, single FFTW thread, shared 2-core machine"},
-                              indent=1))
-    print(f"wrote {out}")
+    _record.write("tangential_cattaneo", {"benchmark": "tangential_cattaneo", "rows": rows,
+                                          "note": "wall times are medians, single FFTW thread"}, args.output)
 
 
 if __name__ == "__main__":

@@ -21,21 +21,20 @@ exception but GrossSlidingError is a finding); the invariants of tests/solver/ta
 displacement = A tau on the whole grid; the traction and shift against a solve from the plain start with the
 product memo cleared (flag above 1e-5 max g / 1e-5 relative); for a prescribed shift, the force-mode solve at the
 returned force must give back the traction, and the shift unless it ends with no stick element (then it reports
-the sub-element stick point's shift, `solver.tangential._stick_point_shift`; such results are also held to the
+the sub-element stick point's shift, `solver.tangential.shift._stick_point_shift`; such results are also held to the
 stick point's 8 degrees of slip alignment instead of acos(0.999)). Products: median / 90th percentile / max per
 category.
-Writes benchmarks/results/tangential_fuzz.json.
+Writes DIR/tangential_fuzz.json (-o DIR, default results/benchmarks/).
 """
 import argparse
-import json
 import math
 import statistics
 import time
-from pathlib import Path
 
 import numpy as np
 
 from tangential_cattaneo import cattaneo_scene
+import _record
 from rollcontact.solver.tangential import shift as T
 from rollcontact.solver.tangential.shift import TangentialParams, solve_tangential, traction_capacity
 
@@ -142,7 +141,7 @@ def violations(sc, r, g, force):
     big = (region == 2) & (smag > 100 * slip_tol)
     align = 0.999
     if np.count_nonzero(region == 1) <= 1:
-        # the shift may be the sub-element stick point's (solver.tangential._stick_point_shift), which keeps the
+        # the shift may be the sub-element stick point's (solver.tangential.shift._stick_point_shift), which keeps the
         # resolved slips (above STICK_POINT_RESOLVED of the largest) within acos(STICK_POINT_ALIGN) of -tau
         big &= smag > T.STICK_POINT_RESOLVED * smag[region == 2].max(initial=0.0)
         align = T.STICK_POINT_ALIGN
@@ -209,7 +208,7 @@ def summary(rows):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = _record.parser(__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--dx", type=float, nargs="+", default=[0.2, 0.1])
     ap.add_argument("--cases", type=int, default=280, help="cases per grid (spread over the categories)")
     ap.add_argument("--seed", type=int, default=2024)
@@ -234,9 +233,7 @@ def main():
             print(f"| {cat} | {s['cases']} | {s['converged']} | {s['gross_sliding']} | {s['flagged']} "
                   f"| {s['stick_point']} | "
                   f"{s['median']} / {s['p90']} / {s['max']} |")
-    out = Path(__file__).parent / "results" / "tangential_fuzz.json"
-    out.write_text(json.dumps(results, indent=1, default=float))
-    print(f"\nwritten {out}")
+    _record.write("tangential_fuzz", results, args.output)
 
 
 if __name__ == "__main__":

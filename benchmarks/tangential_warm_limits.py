@@ -13,16 +13,16 @@ identification of the stick/slip division:
   one per iteration plus the start product.
 * `solve_tangential` on the same steps, all products counted (`TangentialResult.iterations`).
 
-Usage: .venv/bin/python benchmarks/tangential_warm_limits.py [--dx 0.2 0.1 0.05 0.0211]
-Writes benchmarks/results/tangential_warm_limits.json and prints a Markdown table.
+Usage: .venv/bin/python benchmarks/tangential_warm_limits.py [--quick] [--dx 0.2 0.1 0.05 0.0211] [-o DIR]
+Writes DIR/tangential_warm_limits.json (default results/benchmarks/; the committed one: -o benchmarks/results) and
+prints a Markdown table. --quick: dx = 0.2 and 0.1 only.
 """
-import argparse
-import json
 import sys
 from pathlib import Path
 
 import numpy as np
 
+import _record
 from tangential_cattaneo import FN, MU, cattaneo_scene
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -98,20 +98,19 @@ def markdown(rows):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--dx", type=float, nargs="*", default=[0.2, 0.1, 0.05, 0.0211])
-    parser.add_argument("--output", default=str(ROOT / "benchmarks" / "results" / "tangential_warm_limits.json"))
+    parser = _record.parser(__doc__)
+    parser.add_argument("--quick", action="store_true", help="dx = 0.2 and 0.1 mm only")
+    parser.add_argument("--dx", type=float, nargs="*", default=None, help="default 0.2 0.1 0.05 0.0211")
     args = parser.parse_args(argv)
+    args.dx = args.dx or ([0.2, 0.1] if args.quick else [0.2, 0.1, 0.05, 0.0211])
     params = TangentialParams()
     rows = []
     for dx in args.dx:
         rows.append(run(dx, params))
         print(rows[-1], flush=True)
-    path = Path(args.output)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(dict(benchmark="tangential_warm_limits", tol=params.tol, rows=rows), indent=1))
+    _record.write("tangential_warm_limits", dict(benchmark="tangential_warm_limits", tol=params.tol, quick=args.quick,
+                                                 rows=rows), args.output)
     print(markdown(rows))
-    print(f"\nwritten {path}")
 
 
 if __name__ == "__main__":

@@ -1,22 +1,31 @@
 """rollcontact: quasi-static rolling contact with Coulomb friction on an elastic half-space (boundary elements,
 FFT). Units: mm, N, MPa, degrees.
 
-The Python API (the `rollcontact` command is a thin layer over it; see README, "Python API"):
+The Python API (every `rollcontact` command is a thin layer over one of these; see docs/python_api.md):
 
-    load_scene(path=None, overrides=None)   a scene from a TOML file or the embedded default, with overrides
-    run(scene, output=None)                  run it (BEM or the 1-D MDR model); a RunResult, HDF5 if output given
-    read_run(path)                           a stored run file as the same RunResult
-    restart(path, step=None, overrides=None) continue a stored run (more periods, after a kill), as `run --restart`
-    stresses(path, steps=None, depths=None)  add the subsurface stresses of stored steps to a run file
+    load_scene(path=None, overrides=None)    a scene from a TOML file or the embedded default, with overrides
+    run(scene, output=None, ...)             run it (BEM or the 1-D MDR model); a RunResult, HDF5 if output given
+    read_run(path)                           a stored run file as the same RunResult (results compare with ==)
+    restart(path, step=None, ...)            continue a stored run (more periods, after a kill), as `run --restart`
+    stresses(run, steps=None, depths=None)   the subsurface stresses of a run file or a RunResult
     sweep(scene, vary, output, ...)          a parameter sweep, as `rollcontact sweep`
     limit_search(scene, vary, output, ...)   the shakedown-limit search, as `rollcontact limit-search`
+    limits(w=None, ft=None, ...)             the closed-form limits, as `rollcontact limits`
+    plot(target, ...), compare(a, b, ...)    figures of a run, a sweep folder, two runs
+    creep_curve(scene, of="xi", ...)         the creep-force curve of a [rolling] scene, as `rollcontact creep-curve`
+    default_output(scene, ...)               where `rollcontact run` writes without -o
+    import_contact(deck, output=None)        a CONTACT input deck as scenes and a report, as `import-contact`
+
+Errors are RollcontactError: SceneError, InputError, OutputExistsError, OutputInUseError, OutputWriteError,
+ConvergenceError (rollcontact.cases.api).
 
 Subpackages, in the order data flows: `rollcontact.cases` (scenes, runs, results, sweeps, plots, CLI) ->
 `rollcontact.bem` (half-space: materials, grid, influence coefficients, FFT operator) -> `rollcontact.solver`
 (normal and tangential solvers, rolling, MDR model).
 """
-_API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "RunResult", "Scene",
-        "RollcontactError", "InputError", "SceneError", "ConvergenceError", "RunInterrupted")
+_API = ("load_scene", "run", "read_run", "restart", "stresses", "sweep", "limit_search", "limits", "plot", "compare",
+        "creep_curve", "default_output", "import_contact", "RunResult", "Scene", "RollcontactError", "InputError",
+        "SceneError", "ConvergenceError", "OutputExistsError", "OutputInUseError", "OutputWriteError", "RunInterrupted")
 __all__ = ["__version__", *_API]
 
 

@@ -1,4 +1,4 @@
-"""Closed-form reference solutions (theory.md §7), used by tests, benchmarks and run summaries.
+"""Closed-form reference solutions (docs/theory.md §7), used by tests, benchmarks and run summaries.
 
 Units mm, N, MPa. Material constants come from `bem.materials.MaterialPair` (E*, G*).
 """
@@ -82,9 +82,9 @@ def check_ft(f_t):
 
 @dataclass(frozen=True)
 class CattaneoMindlin:
-    """Cattaneo-Mindlin partial slip of a Hertz sphere under a monotonically increasing Ft (theory §7.2).
+    """Cattaneo-Mindlin partial slip of a Hertz sphere under a monotonically increasing Ft (docs/theory.md §7.2).
 
-    Exact for nu = 0 and beta = 0; for nu = 0.5 the shift is within a few 0.1 % (pitfall P10).
+    Exact for nu = 0 and beta = 0; for nu = 0.5 the shift is within a few 0.1 % (docs/theory.md P10).
     """
 
     hertz: HertzSphere
@@ -128,12 +128,12 @@ class CattaneoMindlin:
     def reloading_shift(self, f_t_max, f_t) -> float:
         """Mindlin-Deresiewicz: shift (mm) on the reloading branch from -f_t_max back to f_t <= f_t_max.
 
-        U(f) = -U_load(f_max) + 2 U_load((f_max + f)/2)   (theory §11.2; the unloading branch mirrored).
+        U(f) = -U_load(f_max) + 2 U_load((f_max + f)/2)   (docs/theory.md §11.2; the unloading branch mirrored).
         """
         return -self.unloading_shift(f_t_max, -f_t)
 
     def cycle_dissipation(self, f_t_max) -> float:
-        """Energy (N mm) dissipated per full cycle between +f_t_max and -f_t_max (the loop area, theory §11.2):
+        """Energy (N mm) dissipated per full cycle between +f_t_max and -f_t_max (the loop area, docs/theory.md §11.2):
 
         dW = 4 mu Fn U0 [6/5 - x - x (1 - x)^(2/3) - (6/5)(1 - x)^(5/3)],  x = f_t_max (-> 4 mu Fn U0 x^3/27).
         """
@@ -258,7 +258,7 @@ def spence_stick_ratio(beta, mu) -> float:
 
     Background (D. A. Spence, "The Hertz contact problem with finite friction", J. Elasticity 5 (1975)
     297-319; Johnson, Contact Mechanics, 1985, ch. 5). The pressure p displaces the two surfaces radially
-    by different amounts (by -(2 beta/E*) (1/r) int_0^r p s ds relative to each other, theory §2.2); friction
+    by different amounts (by -(2 beta/E*) (1/r) int_0^r p s ds relative to each other, docs/theory.md §2.2); friction
     resists it with a radial traction that sticks in r < c and slips, |q| = mu p, in the annulus c < r < a.
     Only the first-order coupling is kept: the pressure is Hertz's, unaffected by q (the effect of q on p is
     of order beta mu). Because every field grows self-similarly with a, the load increment is a flat-punch

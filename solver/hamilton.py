@@ -1,7 +1,7 @@
-"""Stresses below a sliding Hertz sphere in closed form (Hamilton 1983; theory.md §11.6).
+"""Stresses below a sliding Hertz sphere in closed form (Hamilton 1983; docs/theory.md §11.6).
 
 Hertz pressure p = p0 (1 - r^2/a^2)^(1/2) on the substrate and, in full slip, the traction q_x = mu p on it (along +x,
-the convention of theory.md §0; q_y = 0). Frame x, y on the surface, z >= 0 the depth into the substrate, tension
+the convention of docs/theory.md §0; q_y = 0). Frame x, y on the surface, z >= 0 the depth into the substrate, tension
 positive. Stresses depend on the substrate's Poisson ratio nu only.
 
 Hamilton's variables (G. M. Hamilton, "Explicit equations for the stresses beneath a sliding spherical contact",

@@ -1,6 +1,25 @@
-"""Command line: `rollcontact run | limits | ...` (see the README walkthrough).
+"""Command line: `rollcontact run | limits | sweep | limit-search | plot | compare | stresses | creep-curve |
+import-contact` (see the README walkthrough).
 
-Exit codes: 0 success, 1 the run failed (its partial results are still written), 2 bad input.
+Every command is a thin layer over one function of the Python API (rollcontact.cases.api, `import rollcontact`): it
+parses its arguments, calls the API, and prints what the API returns (a result's `report()`); the modules of this
+package import nothing of rollcontact but the API (tests/cases/test_api.py checks it). The API's messages name its
+own arguments (`output`, `overrides`); inside a command (cases.arguments.command_line, set in `main`) the same
+messages name the options (-o, --set).
+
+Adding a command (e.g. `import-contact`):
+  1. the work, in the module of its idea (for a new family, a new subpackage of cases/), raising RollcontactError
+     subclasses whose messages name arguments through cases.arguments.arg (add the option's spelling to
+     cases.arguments.OPTIONS);
+  2. an API function in cases/api.py (or re-exported there), keyword arguments named as the options, returning a
+     result object with a `report()` (the text the command prints); add its name to `__all__` and to
+     rollcontact/__init__.py's _API;
+  3. a module cases/cli/<name>_cmd.py with `register(subparsers)` that adds the parser and a handler
+     `handler(args) -> int` calling the API function and printing `result.report()`; register it in
+     `build_parser` below. Bad input raises InputError (exit 2), a failure another RollcontactError (exit 1).
+
+Exit codes: 0 success, 1 a run failed (its partial results are still written) or a file could not be written,
+2 bad input, 130 interrupted (Ctrl-C, SIGTERM).
 """
 from __future__ import annotations
 
@@ -10,7 +29,7 @@ from pathlib import Path
 import sys
 
 from rollcontact.bem.errors import InputError, RollcontactError, SceneError
-
+from rollcontact.cases.arguments import command_line
 
 
 def _add_run(sub):
@@ -41,8 +60,6 @@ def _add_run(sub):
 
 def _run(args) -> int:
     from rollcontact.cases import api
-    from rollcontact.cases.run.summary import format_summary
-    from rollcontact.cases.sweep.workers import sigterm_as_interrupt
     if args.step is not None and not args.restart:
         raise InputError(f"--step {args.step}: applies only with --restart RUN.h5 (the stored step to continue "
                          "from); to run a scene from the start, leave --step out")
@@ -51,45 +68,35 @@ def _run(args) -> int:
     progress = not args.quiet
     depths = _stress_depths(args)
     if args.restart:
-        out = args.output or _restart_output(args, progress)
+        out = args.output or api.default_output(restart=args.restart, step=args.step, overrides=args.overrides)
         run = lambda: api.restart(args.restart, step=args.step, overrides=args.overrides,  # noqa: E731
-                                  output=out, overwrite=args.overwrite, progress=progress, stresses=args.stresses,
-                                  depths=depths)
+                                  output=out, overwrite=args.overwrite, new_name=not args.output, progress=progress,
+                                  stresses=args.stresses, depths=depths)
     else:
         scene = api.load_scene(args.scene, args.overrides)
-        out = args.output or _free_default(scene.name, args.overrides, None, progress)
-        run = lambda: api.run(scene, out, overwrite=args.overwrite, progress=progress,  # noqa: E731
-                              stresses=args.stresses, depths=depths)
-    sigterm_as_interrupt(flag=False)
+        out = args.output or api.default_output(scene, overrides=args.overrides)
+        run = lambda: api.run(scene, out, overwrite=args.overwrite, new_name=not args.output,  # noqa: E731
+                              progress=progress, stresses=args.stresses, depths=depths)
+    if progress and not args.output and (args.overrides or args.restart) and str(out) != str(args.restart):
+        print(f"no -o given: writing to {out} (named after the scene, the restart step and the --set overrides; "
+              "no file is replaced without -o ... --overwrite)", file=sys.stderr, flush=True)
+    api.stop_on_sigterm()
     try:
         result = run()
     except api.RunInterrupted as exc:
-        print(_interrupted_message(exc.result), file=sys.stderr)
+        print(f"rollcontact run: {exc}", file=sys.stderr)
         return 130
-    except KeyboardInterrupt:       # before the first step, or a second interrupt while the run was being written
-        print(_interrupted_early_message(out), file=sys.stderr)
-        return 130
-    if Path(result.path) != Path(out):
+    if result.path is not None and result.path.name.startswith(f"{Path(out).stem}.partial"):
         print(f"the run did not complete: written to {result.path}, beside the complete run in {out}, "
               "which is kept", file=sys.stderr)
-    print(format_summary(result))
-    if args.stresses and result.path is not None:
+    print(result.report())
+    if args.stresses:
         _report_stresses(result)
-    elif not args.stresses:
-        _note_unused_stresses(args.restart, result.path)
+    else:
+        note = api.unused_stresses_note(result.path, args.restart)
+        if note:
+            print(note, file=sys.stderr)
     return 0 if result.status == "complete" else 1
-
-
-def _note_unused_stresses(*run_files):
-    """A run without --stresses beside step files of an earlier `run --stresses` (killed) says they are there."""
-    from rollcontact.cases.run.step_stresses import folder_of
-    for run_file in {Path(f) for f in run_files if f}:
-        folder = folder_of(run_file)
-        steps = list(folder.glob("step_*.h5")) if folder.is_dir() else []
-        if steps:
-            print(f"note: {folder} holds the subsurface stresses of {len(steps)} stored step(s) of an earlier "
-                  "`run --stresses` that stopped; this run (without --stresses) did not use them: restart with "
-                  "--stresses to take them, or remove the folder", file=sys.stderr)
 
 
 def _report_stresses(result):
@@ -97,9 +104,8 @@ def _report_stresses(result):
     if not len(result.field_steps):
         print("--stresses: the run stored no field snapshots (output.fields = 'none', or the MDR model); no "
               "subsurface stresses computed", file=sys.stderr)
-    elif result.subsurface.get("steps"):
-        from rollcontact.cases.cli.stresses_cmd import report
-        print(report(result.subsurface, result.path))
+    elif result.subsurface:
+        print(result.subsurface.report())
 
 
 def _stress_depths(args):
@@ -108,49 +114,8 @@ def _stress_depths(args):
         return None
     if not args.stresses:
         raise InputError("--depths applies only with --stresses (the subsurface stresses of the stored steps)")
-    from rollcontact.cases.run.stresses import parse_depths
-    return parse_depths(args.depths)
-
-
-def _interrupted_early_message(out) -> str:
-    from rollcontact.cases.results.hdf5 import stored_summary
-    stored = stored_summary(out) if Path(out).is_file() else None
-    if stored is None:
-        return "rollcontact run: interrupted before the first step; nothing written"
-    more = "" if stored["status"] == "complete" else f"; continue with: rollcontact run --restart {out}"
-    return f"rollcontact run: interrupted; {out} is left with status '{stored['status']}'{more}"
-
-
-def _restart_output(args, progress) -> Path:
-    """Without -o, a restart of a run that did not complete (a checkpoint, a failed run) from its last step continues
-    in its own file; any other goes to a new file named after it and the step."""
-    from rollcontact.cases.run.restart import load_restart
-    source = load_restart(args.restart, args.step)
-    if source.data.status != "complete" and source.step == int(source.data.history["step"][-1]):
-        return Path(args.restart)
-    return _free_default(source.scene.name, args.overrides, source.step, progress)
-
-
-def _free_default(scene_name, overrides, restart_step, progress) -> Path:
-    """The default output (cases.results.outputs.default_output), with -2, -3, ... added while that name exists:
-    a run without -o never replaces a file."""
-    from rollcontact.cases.results.outputs import default_output, free_name
-    base = default_output(scene_name, overrides, restart_step)
-    out = free_name(base)
-    if progress and (overrides or restart_step is not None or out != base):
-        why = f"{base} exists" if out != base else "named after the scene, the restart step and the --set overrides"
-        print(f"no -o given: writing to {out} ({why}; no file is replaced without -o ... --overwrite)",
-              file=sys.stderr, flush=True)
-    return out
-
-
-def _interrupted_message(result) -> str:
-    n = len(result.history["step"])
-    text = f"rollcontact run: interrupted after {n} step(s); they are in {result.path} (status 'failed')"
-    if len(result.field_steps):
-        step = int(result.field_steps[-1])
-        text += f"; continue with: rollcontact run --restart {result.path} --step {step} -o OUT.h5"
-    return text
+    from rollcontact.cases import api
+    return api.parse_depths(args.depths)
 
 
 class _Version(argparse.Action):
@@ -178,10 +143,11 @@ def build_parser() -> argparse.ArgumentParser:
         limits_cmd = None
     if limits_cmd is not None:
         limits_cmd.register(sub)
-    from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)
+    from rollcontact.cases.cli import sweep_cmd; sweep_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import plot_cmd; plot_cmd.register(sub)  # noqa: E702  plot, compare
     from rollcontact.cases.cli import stresses_cmd; stresses_cmd.register(sub)  # noqa: E702
     from rollcontact.cases.cli import creep_cmd; creep_cmd.register(sub)  # noqa: E702
+    from rollcontact.cases.cli import import_cmd; import_cmd.register(sub)  # noqa: E702
     return parser
 
 
@@ -222,7 +188,8 @@ def main(argv=None) -> int:
     if real:
         sys.stdout = _ClosedPipeSafe(sys.stdout)
     try:
-        return args.func(args)
+        with command_line():           # messages name the options (-o, --set), not the API's keywords
+            return args.func(args)
     except RollcontactError as exc:
         print(f"rollcontact {args.command}: error: {exc}", file=sys.stderr)
         return 2 if isinstance(exc, ValueError) else 1
@@ -234,8 +201,8 @@ def main(argv=None) -> int:
 
 def console_main():
     """The `rollcontact` command (pyproject's entry point): `main`, then, after `run`, an exit that skips the
-    interpreter's teardown. Tearing down numba's compiler and the module graph took 0.23-0.35 s after a run
-    (measured 2026-11-25, 2-core AMD EPYC; benchmarks/startup.py), 10-15 % of a paper scene's process, with nothing
+    interpreter's teardown. Tearing down numba's compiler and the module graph takes 0.23-0.35 s after a run
+    (benchmarks/startup.py), 10-15 % of a paper scene's process, with nothing
     left to do: the run file is closed and renamed into place, stdout and stderr are flushed here, and `run` starts
     no other process or thread that needs a clean-up. The other commands (sweeps with their worker pools and Dask
     clients, plots) exit normally."""

@@ -1,4 +1,5 @@
-"""`rollcontact plot` and `rollcontact compare`: figures of runs and sweeps (PNG and PDF).
+"""`rollcontact plot` and `rollcontact compare`: figures of runs and sweeps (PNG and PDF), over `rollcontact.plot` and
+`rollcontact.compare` (cases.plots.figures).
 
     rollcontact plot RUN.h5 [--step N] [-o DIR]        history (seed Fig. 4), maps (Figs. 5-6), centre lines
                                                       (Figs. 5, 7) at a stored step (default: the last one)
@@ -6,75 +7,25 @@
     rollcontact compare A.h5 B.h5 [--step N] [-o DIR]  both runs on shared scales, B - A, overlaid histories
 
 Default output folder: `plots/` next to a run file, `OUTDIR/plots/` for a sweep folder OUTDIR. Every written file
-is printed. Runs without fields (output.fields = "none", MDR runs) get the history figure and a note.
-Exit codes: 0 written, 2 bad input (missing file, not a run file, step not stored).
+is printed; all figures of a command are written or none. Runs without fields (output.fields = "none", MDR runs) get
+the history figure and a note. Exit codes: 0 written, 2 bad input (missing file, not a run file, step not stored, a
+figure that exists), 1 a figure that could not be written.
 """
 from __future__ import annotations
-
-from pathlib import Path
-import sys
-
-
-def _default_dir(target: Path) -> Path:
-    return (target if target.is_dir() else target.parent) / "plots"
-
-
-def _report(paths, notes) -> int:
-    for n in notes:
-        print(f"note: {n}")
-    for p in paths:
-        print(Path(p).resolve())
-    return 0
-
-
-def _creep_run(target: Path):
-    """The result of a [rolling] run file (its maps are drawn by cases.plots.creep_figures), else None."""
-    from rollcontact.cases.plots.common import PlotError
-    from rollcontact.cases.plots.creep_figures import is_creep_run
-    from rollcontact.cases.results.hdf5 import read_run_file
-    if not target.is_file():
-        return None
-    data = read_run_file(target, PlotError, str(target))
-    return data if is_creep_run(data) else None
 
 
 def plot_handler(args) -> int:
     """`rollcontact plot TARGET`: one run file or a sweep folder."""
-    from rollcontact.cases.plots.common import PlotError, open_run
-    from rollcontact.cases.plots.run_figures import plot_run
-    from rollcontact.cases.plots.sweep_figures import plot_folder
-    notes = []
-    try:
-        target = Path(args.target)
-        out_dir = Path(args.output) if args.output else _default_dir(target)
-        if target.is_dir():
-            if args.step is not None:
-                raise PlotError("--step applies to a run file, not to a sweep folder")
-            paths = plot_folder(target, out_dir, notes, overwrite=args.overwrite)
-        elif _creep_run(target) is not None:
-            from rollcontact.cases.plots.creep_figures import plot_creep_run
-            paths = plot_creep_run(_creep_run(target), out_dir, target.stem, overwrite=args.overwrite)
-        else:
-            paths = plot_run(open_run(target), out_dir, args.step, notes, overwrite=args.overwrite)
-    except PlotError as exc:
-        print(f"rollcontact plot: error: {exc}", file=sys.stderr)
-        return 2
-    return _report(paths, notes)
+    from rollcontact.cases import api
+    print(api.plot(args.target, step=args.step, output=args.output, overwrite=args.overwrite).report())
+    return 0
 
 
 def compare_handler(args) -> int:
     """`rollcontact compare A B`."""
-    from rollcontact.cases.plots.common import PlotError, open_run
-    from rollcontact.cases.plots.run_figures import compare_runs
-    notes = []
-    try:
-        va, vb = open_run(args.a), open_run(args.b)
-        out_dir = Path(args.output) if args.output else _default_dir(Path(args.a))
-        paths = compare_runs(va, vb, out_dir, args.step, notes, overwrite=args.overwrite)
-    except PlotError as exc:
-        print(f"rollcontact compare: error: {exc}", file=sys.stderr)
-        return 2
-    return _report(paths, notes)
+    from rollcontact.cases import api
+    print(api.compare(args.a, args.b, step=args.step, output=args.output, overwrite=args.overwrite).report())
+    return 0
 
 
 def register(subparsers):

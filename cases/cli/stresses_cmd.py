@@ -2,13 +2,11 @@
 
 Computes the stress tensor, von Mises, Tresca (maximum shear) and the first principal stress on the run's grid at
 the given depths (mm; default: 30 depths down to 2 a, finer near the surface) for stored steps (default: the last)
-from the stored tractions, and adds them to the run file as /subsurface (cases.results.subsurface; README, "HDF5
-layout"). Exit codes: 0 written, 2 bad input (missing file, step not stored, bad depths) or a file another process
-is writing (its lock).
+from the stored tractions, and adds them to the run file as /subsurface (cases.results.subsurface; docs/hdf5_schema.md; "HDF5
+layout"), over `rollcontact.stresses`. Exit codes: 0 written, 2 bad input (missing file, step not stored, bad depths)
+or a file another process is writing (its lock), 1 a file that could not be written.
 """
 from __future__ import annotations
-
-import sys
 
 
 def add_depth_options(parser):
@@ -18,31 +16,13 @@ def add_depth_options(parser):
 
 
 def stresses_handler(args) -> int:
-    from rollcontact.cases.run.stresses import add_subsurface, parse_depths
-    from rollcontact.bem.errors import InputError
+    from rollcontact.cases import api
     if args.all_steps and args.step:
-        raise InputError("give either --step N or --all-steps, not both")
-    depths = parse_depths(args.depths) if args.depths is not None else None
+        raise api.InputError("give either --step N or --all-steps, not both")
+    depths = api.parse_depths(args.depths) if args.depths is not None else None
     steps = "all" if args.all_steps else args.step
-    result = add_subsurface(args.run, steps=steps, depths=depths, progress=None if args.quiet else _progress)
-    print(report(result, args.run))
+    print(api.stresses(args.run, steps=steps, depths=depths, progress=not args.quiet).report())
     return 0
-
-
-def report(result, path) -> str:
-    """The line that says what `add_subsurface` wrote."""
-    z = result["z"]
-    reused = len(result.get("reused", ()))
-    kept = f"; {reused} step(s) computed before and kept" if reused else ""
-    steps = [int(s) for s in result["steps"]]
-    listed = ", ".join(map(str, steps)) if len(steps) <= 12 else f"{steps[0]}, {steps[1]}, ..., {steps[-1]}"
-    return (f"subsurface stresses of step(s) {listed} at {len(z)} depths "
-            f"({z[0]:.4g} ... {z[-1]:.4g} mm) written to {path} (/subsurface; computed in {result['seconds']:.2f} s"
-            f"{kept})")
-
-
-def _progress(message):
-    print(message, file=sys.stderr, flush=True)
 
 
 def register(subparsers):

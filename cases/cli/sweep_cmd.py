@@ -7,11 +7,10 @@
 One HDF5 file per run in OUTDIR, OUTDIR/summary.{csv,h5} (sweep) or OUTDIR/limits.{csv,h5} (limit-search).
 Rerunning the same command resumes: complete runs of the same scene are skipped. Exit codes: 0 every run
 complete, 1 some run failed (recorded in the summary), 2 bad input, 130 interrupted (Ctrl-C or SIGTERM;
-what finished is kept and summarised).
+what finished is kept and summarised). Over `rollcontact.sweep` and `rollcontact.limit_search`.
 """
 from __future__ import annotations
 
-import argparse
 import sys
 
 
@@ -55,46 +54,33 @@ def register(subparsers):
 
 def sweep_handler(args) -> int:
     from rollcontact.cases import api
-    from rollcontact.cases.sweep.workers import sigterm_as_interrupt
     if not args.vary:
         print("rollcontact sweep: error: give at least one --vary section.key=VALUES, "
               "e.g. --vary load.ft=0.1:0.9:9", file=sys.stderr)
         return 2
-    sigterm_as_interrupt()
+    api.stop_on_sigterm(sweep=True)
     try:
         report = api.sweep(api.load_scene(args.scene), args.vary, args.output, overrides=args.overrides,
                            jobs=args.jobs, scheduler=args.scheduler, overwrite=args.overwrite,
                            progress=not args.quiet)
     except KeyboardInterrupt:
         return 130
-    print(f"{report.planned} run(s): {report.ran} run now, {report.skipped} skipped (already complete), "
-          f"{report.elsewhere} run by another process, {report.failed} failed; summary: {report.summary_csv}")
+    print(report.report())
     return 1 if report.failed else 0
 
 
 def limit_handler(args) -> int:
     from rollcontact.cases import api
-    from rollcontact.cases.sweep.workers import sigterm_as_interrupt
     if not args.vary:
         print("rollcontact limit-search: error: give --vary motion.w=... (or --vary load.ft=...)",
               file=sys.stderr)
         return 2
-    sigterm_as_interrupt()
+    api.stop_on_sigterm(sweep=True)
     try:
         report = api.limit_search(api.load_scene(args.scene), args.vary, args.output, overrides=args.overrides,
                                   tol=args.tol, jobs=args.jobs, scheduler=args.scheduler, overwrite=args.overwrite,
                                   progress=not args.quiet)
     except KeyboardInterrupt:
         return 130
-    name = "f_t,lim" if report.searched == "load.ft" else "w_lim"
-    for r in report.rows:
-        fixed = " ".join(f"{k}={r[k]}" for k in report.keys)
-        if r["status"] == "failed":
-            print(f"{fixed}: failed: {r['error']}")
-            continue
-        closed = ", ".join(f"{c.split('=')[1]}: {r[c]:.4f}" for c in ("mdr_kappa=1", "mdr_kappa=1.1",
-                                                                       "mdr_kappa=1.5"))
-        print(f"{fixed}: 3D {name} in [{r['lower']:.4f}, {r['upper']:.4f}] (mid {r['midpoint']:.4f}, "
-              f"{r['status']}, {r['probes']} probes); MDR kappa {closed}")
-    print(f"limits: {report.limits_csv}")
+    print(report.report())
     return 1 if any(r["status"] == "failed" for r in report.rows) else 0

@@ -2,14 +2,14 @@
 shakedown behaviour depends on the angle theta between Ft and the rolling direction (the seed's open question I).
 
 `<folder>_angles`, six panels against theta (folded to 0..90 deg: theta, -theta and 180 - theta are mirror
-images of one another, theory §11.1):
+images of one another, docs/theory.md §11.1):
 * kappa of seed Eq. 13 fitted per angle over its shaken-down runs (least squares, +- its standard error), with
   the interpolation kappa(theta) = kappa_par cos^2(theta) + kappa_perp sin^2(theta) between the fits at 0 and 90;
 * u_sd = U_sd/U0 per (f_t, w) of the shaken-down runs;
 * du = dU/U0 per period of the ratcheting runs, and their sideways walk du_perp = dU_perp/U0 per period;
 * the sideways offset U_perp/U0 at which the shaken-down runs come to rest;
 * f_t,lim from limits.csv (a limit search with motion.angle varied), bracket as error bar, against the
-  angle-free bound 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, theory §8.4) and the seed's Eqs. 18-19 at 0 and 90 deg.
+  angle-free bound 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, docs/theory.md §8.4) and the seed's Eqs. 18-19 at 0 and 90 deg.
 `angle_fit_text` gives the same numbers as text, with the largest error of both closed forms.
 Units: f_t = Ft/(mu Fn), w = W/a, u = U/U0 (seed Eq. 9), theta in degrees.
 """
@@ -18,7 +18,6 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.solver.mdr import limits as lim
 
 from rollcontact.cases.plots.common import MDR_COLOUR, PARALLEL_COLOUR, PERPENDICULAR_COLOUR
@@ -35,10 +34,11 @@ def study_angles(points) -> list[float]:
 
 
 def kappa_by(points, key) -> dict:
-    """key(point) -> fit_kappa (seed Eq. 13) over the shaken-down runs with w > 0 that share that key."""
+    """key(point) -> fit_kappa (seed Eq. 13) over the runs with w > 0 that share that key and that Eq. 13 describes
+    (shaken down under constant loads, `cases.plots.sweep_figures.Point.on_eq13`)."""
     fits = {}
     for g in sorted({key(p) for p in points}):
-        sel = [p for p in points if key(p) == g and p.state in SETTLED_STATES and p.u_sd is not None and p.w > 0]
+        sel = [p for p in points if key(p) == g and p.on_eq13 and p.w > 0]
         if sel:
             try:
                 fits[g] = lim.fit_kappa([p.f_t for p in sel], [p.w for p in sel], [p.u_sd for p in sel])
@@ -63,7 +63,7 @@ def kappa_interpolation(fits):
 
 
 def lens_bound(w):
-    """The angle-free closed form proposed for f_t,lim: 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, theory §8.4)."""
+    """The angle-free closed form proposed for f_t,lim: 1 - 1.5 w + 0.5 w^3 (kappa = 3/2, docs/theory.md §8.4)."""
     w = np.asarray(w, dtype=float)
     return 1.0 - 1.5 * w + 0.5 * w ** 3
 
@@ -137,12 +137,12 @@ def angle_figure(points, limits, title):
     ax.legend(fontsize=7)
 
     ax = axes[0, 1]
-    for (f_t, w), sel in _by([p for p in study if p.state in SETTLED_STATES and p.u_sd is not None],
-                             lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
-        ax.plot([p.angle for p in sel], [p.u_sd for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1)
-        ax.annotate(f"f_t={f_t:g}, w={w:g}", (sel[-1].angle, sel[-1].u_sd), xytext=(3, 0),
-                    textcoords="offset points", fontsize=6, color=colour(w))
+    for (f_t, w), sel in _by([p for p in study if p.on_eq13], lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
+        ax.plot([p.angle for p in sel], [p.u_sd for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1,
+                label=f"f_t={f_t:g}, w={w:g}")
     ax.set_ylabel("$u_{sd} = U_{sd}/U_0$ (shakedown runs)")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=6, ncol=2)
 
     ratcheting = _by([p for p in study if p.state == "ratcheting" and p.du is not None],
                      lambda p: (round(p.f_t, 6), round(p.w, 6)))
@@ -159,7 +159,7 @@ def angle_figure(points, limits, title):
             ax.legend(fontsize=7)
 
     ax = axes[1, 2]
-    for (f_t, w), sel in _by([p for p in study if p.state in SETTLED_STATES and p.u_perp is not None],
+    for (f_t, w), sel in _by([p for p in study if p.on_eq13 and p.u_perp is not None],
                              lambda p: (round(p.f_t, 6), round(p.w, 6))).items():
         ax.plot([p.angle for p in sel], [p.u_perp for p in sel], "o", ls=line(f_t), color=colour(w), ms=4, lw=1,
                 label=f"f_t={f_t:g}, w={w:g}")

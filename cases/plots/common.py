@@ -1,9 +1,9 @@
-"""Shared pieces of the figures (`plots_run`, `plots_sweep`): reading a run for plotting, normalisations,
+"""Shared pieces of the figures (`run_figures`, `sweep_figures` and the others of `cases.plots`): reading a run for plotting, normalisations,
 colours, the seed's contact regions, centre-line sampling and saving.
 
-Normalisations (seed Eq. 9 with the consistent constants, theory.md §8.2 and pitfall P3):
+Normalisations (seed Eq. 9 with the consistent constants, docs/theory.md §8.2 and docs/theory.md P3):
 u = U/U0 with U0 = mu E* d/G* (U measured along Ft), f_t = Ft/(mu Fn), w = W/a, tractions over mu p0,
-pressures in MPa, coordinates in mm. Sign conventions as in theory.md §0: tau is the traction exerted by the
+pressures in MPa, coordinates in mm. Sign conventions as in docs/theory.md §0: tau is the traction exerted by the
 sphere on the substrate, u_x the displacement of the substrate surface relative to the sphere.
 
 Colours are fixed across every figure: parallel (rolling along Ft) blue, perpendicular red, other angles in
@@ -11,6 +11,8 @@ between; the pure-MDR reference (kappa = 3/2) grey.
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 import math
 import os
@@ -24,7 +26,9 @@ import numpy as np  # noqa: E402
 
 from rollcontact.bem.errors import InputError, OutputExistsError  # noqa: E402
 
+from rollcontact.cases.arguments import arg, flag, on_command_line  # noqa: E402
 from rollcontact.cases.results.hdf5 import read_run_file  # noqa: E402
+from rollcontact.cases.results.writing import write_failed  # noqa: E402
 from rollcontact.cases.results.run_result import RunResult  # noqa: E402
 from rollcontact.cases.results.outputs import output_folder  # noqa: E402
 from rollcontact.cases.scene.scene import Scene  # noqa: E402
@@ -126,13 +130,17 @@ class RunView:
 
     @property
     def label(self) -> str:
-        s = "W ∥ Ft" if self.setting == "parallel" else "W ⊥ Ft" if self.setting == "perpendicular" \
-            else f"W at {self.angle:g}° to Ft"
+        """The rolling setting ('W ∥ Ft', 'W ⊥ Ft', 'W at 30° to Ft'), or 'no rolling' for w = 0."""
+        if self.w == 0:
+            s = "no rolling"
+        else:
+            s = "W ∥ Ft" if self.setting == "parallel" else "W ⊥ Ft" if self.setting == "perpendicular" \
+                else f"W at {self.angle:g}° to Ft"
         return s + (" (MDR 1-D)" if self.is_mdr else "")
 
     @property
     def title(self) -> str:
-        return f"{self.label}:  $f_t$ = {self.f_t:.3g}, $w$ = {self.w:.3g}  ({self.state})"
+        return f"{self.label}:  $f_t$ = {self.f_t:.3g}, $w$ = {self.w:.3g}  ({self.state.replace('_', ' ')})"
 
     # --- history ---------------------------------------------------------------------------------
     @property
@@ -303,28 +311,71 @@ def centre_line(view: RunView, values: np.ndarray, step: int, direction, order=1
 def save_figure(fig, out_dir, stem, overwrite=False) -> list[Path]:
     """Write `stem`.png (DPI) and `stem`.pdf into out_dir, each through a temporary file renamed into place;
     returns both paths. An existing one is not replaced unless `overwrite` (OutputExistsError naming it and
-    --overwrite; the figure is then not written at all)."""
+    --overwrite; the figure is then not written at all); OutputWriteError naming the file when it cannot be written.
+    Inside `all_or_none()` the two files are renamed into place only when the whole block succeeds."""
     out_dir = output_folder(out_dir)
     paths = [out_dir / f"{stem}.png", out_dir / f"{stem}.pdf"]
     existing = [p for p in paths if p.exists()]
     if existing and not overwrite:
         plt.close(fig)
-        raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: add "
-                                "--overwrite, or give another folder with -o")
-    _save_atomically(fig, paths[0], dpi=DPI)
-    fig.set_layout_engine("none")       # keep the layout just computed: the PDF needs no second pass
-    _save_atomically(fig, paths[1])
-    plt.close(fig)
+        raise OutputExistsError(f"{existing[0]}: exists; rollcontact does not replace a file unless asked: "
+                                f"{'add ' if on_command_line() else 'pass '}{flag('overwrite')}, or give another "
+                                f"folder with {arg('output')}")
+    pending = _batch.get()
+    try:
+        _render(fig, paths[0], pending, dpi=DPI)
+        fig.set_layout_engine("none")       # keep the layout just computed: the PDF needs no second pass
+        _render(fig, paths[1], pending)
+    finally:
+        plt.close(fig)
     return paths
 
 
-def _save_atomically(fig, path: Path, **kwargs):
+def _render(fig, path: Path, pending, **kwargs):
+    """The figure into `path` (through its temporary file; kept in `pending` for all_or_none's rename)."""
     tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
     try:
         fig.savefig(tmp, format=path.suffix[1:], **kwargs)
-        os.replace(tmp, path)
+        if pending is None:
+            os.replace(tmp, path)
+        else:
+            pending.append((tmp, path))
+            tmp = None
+    except OSError as exc:
+        raise write_failed(path, exc, "figure") from None
     finally:
-        tmp.unlink(missing_ok=True)
+        if tmp is not None:
+            _unlink(tmp)
+
+
+_batch = ContextVar("rollcontact_figure_batch", default=None)
+
+
+@contextmanager
+def all_or_none():
+    """The figures saved inside (save_figure) are renamed into place together when the block ends without an error;
+    after an error (a step not stored, a figure that exists, a full disk) none is, and their temporary files go: a
+    command that refuses or fails leaves no figure of its own behind."""
+    pending = []
+    token = _batch.set(pending)
+    try:
+        yield
+        for tmp, path in pending:
+            try:
+                os.replace(tmp, path)
+            except OSError as exc:
+                raise write_failed(path, exc, "figure") from None
+    finally:
+        _batch.reset(token)
+        for tmp, _ in pending:
+            _unlink(tmp)
+
+
+def _unlink(path: Path):
+    try:
+        path.unlink(missing_ok=True)
+    except OSError:
+        pass
 
 
 def _compact(steps) -> str:

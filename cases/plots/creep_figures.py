@@ -8,28 +8,39 @@ from rollcontact.cases.plots.common import plt, save_figure
 from rollcontact.solver.creep import vermeulen_johnson
 
 LABELS = {"xi": ("longitudinal creepage", "F_x"), "eta": ("lateral creepage", "F_y"), "phi": ("spin", "F_y")}
+#: How each model's curve is drawn (its name in the legend, marker, colour).
+MODEL_STYLES = {"bem": ("exact theory (boundary elements)", "o-", "C0"), "fastsim": ("FASTSIM", "s--", "C3"),
+                "fastrip": ("FaStrip", "^-.", "C4")}
 
 
-def plot_curve(table, out_dir, stem, overwrite=False):
-    """Write stem.png and stem.pdf into out_dir; returns their paths."""
-    name, force = LABELS[table.varied]
-    s = np.array([r["creepage_over_saturation"] for r in table.rows])
-    f = np.array([r["F_over_muFn"] for r in table.rows])
-    fine = np.linspace(0.0, s.max(), 200)
+def plot_curve(tables, out_dir, stem, overwrite=False):
+    """Write stem.png and stem.pdf into out_dir: the curve of each table (one CurveTable, or several of the same
+    creepage drawn side by side, one per model) with the linear theory and Vermeulen-Johnson; returns their paths."""
+    tables = [tables] if not isinstance(tables, (list, tuple)) else list(tables)
+    first = tables[0]
+    name, force = LABELS[first.varied]
     fig, ax = plt.subplots(figsize=(6.0, 4.0), layout="constrained")
-    ax.plot(s, f, "o-", color="C0", label="rollcontact, steady")
+    top = 0.0
+    for table in tables:
+        s = np.array([r["creepage_over_saturation"] for r in table.rows])
+        f = np.array([r["F_over_muFn"] for r in table.rows])
+        label, style, colour = MODEL_STYLES[table.fidelity]
+        if len(tables) > 1:
+            label += f", {sum(r['cpu_time'] for r in table.rows):.3g} s"
+        ax.plot(s, f, style, color=colour, label=label, ms=4)
+        top = max(top, s.max())
+    fine = np.linspace(0.0, top, 200)
     ax.plot(fine[fine <= 1.2], fine[fine <= 1.2], "--", color="C1", label="Kalker's linear theory")
     ax.plot(fine, vermeulen_johnson(fine), ":", color="C2", label="Vermeulen-Johnson")
     ax.axhline(1.0, color="0.6", lw=0.8)
-    if getattr(table, "lowest_ratio", None) is not None and table.lowest_ratio < 1.0:   # a falling friction law
-        ax.axhline(table.lowest_ratio, color="C3", lw=0.8, ls="-.", label="mu_kin Fn (the law at high slip velocity)")
-
-    unit = " (1/mm)" if table.varied == "phi" else ""
-    ax.set_xlabel(f"{name} / saturation value ({table.saturation:.4g}{unit})")
+    if getattr(first, "lowest_ratio", None) is not None and first.lowest_ratio < 1.0:   # a falling friction law
+        ax.axhline(first.lowest_ratio, color="C3", lw=0.8, ls="-.", label="mu_kin Fn (the law at high slip velocity)")
+    unit = " (1/mm)" if first.varied == "phi" else ""
+    ax.set_xlabel(f"{name} / saturation value ({first.saturation:.4g}{unit})")
     ax.set_ylabel(f"-{force} / (mu Fn)")
-    law = f"\n{table.law}" if getattr(table, "law", "") else ""
-    ax.set_title(f"creep-force curve over {table.varied}; mu Fn = {table.mu_fn:.4g} N{law}", fontsize=10)
-    ax.legend(loc="lower right")
+    law = f"\n{first.law}" if getattr(first, "law", "") else ""
+    ax.set_title(f"creep-force curve over {first.varied}; mu Fn = {first.mu_fn:.4g} N{law}", fontsize=10)
+    ax.legend(loc="lower right", fontsize=8)
     return save_figure(fig, out_dir, stem, overwrite=overwrite)
 
 
@@ -81,6 +92,9 @@ def plot_creep_run(data, out_dir, stem, overwrite=False):
     fig.suptitle(f"{s['mode']} rolling: xi = {s['xi']:.4g}, eta = {s['eta']:.4g}, phi = {s['phi']:.4g} 1/mm; "
                  f"F_x = {s['F_x']:.4g} N, F_y = {s['F_y']:.4g} N (on the sphere)", fontsize=10)
     paths = save_figure(fig, out_dir, f"{stem}_maps", overwrite=overwrite)
+    if "pressure_centroid_x" in s:       # viscoelastic bodies: the pressure leaning forward (docs/viscoelastic.md)
+        from rollcontact.cases.plots.visco_figures import plot_pressure
+        paths += plot_pressure(data, out_dir, stem, overwrite=overwrite)
     from rollcontact.cases.plots.friction_figures import plot_friction      # a law's mu, slip velocity, temperatures
     window = keep if s.get("state") == "transient" else None
     return paths + plot_friction(data, out_dir, stem, window=window, overwrite=overwrite)

@@ -2,7 +2,7 @@
 
 * left: the hysteresis loop, u = U/U0 along Ft against f_t = Ft/(mu Fn) (Fn: the scene's mean normal force), every
   step, the last period drawn bold; for constant Fn, a mean f_t of 0 and no rolling, the Mindlin-Deresiewicz
-  branches of the closed cycle (theory.md §11.2) dashed;
+  branches of the closed cycle (docs/theory.md §11.2) dashed;
 * right: the frictional work of each period (N mm, /history/dissipation summed over the period), with the
   Mindlin-Deresiewicz loop area in the same case; a shaken-down run's work falls to zero.
 
@@ -47,7 +47,7 @@ def loads_figure(view: RunView):
     if cm is not None:
         t = np.linspace(-x, x, 201)
         ax.plot(t, [cm.unloading_shift(x, ti) / view.U0 for ti in t], "--", color=MDR_COLOUR, lw=1.2,
-                label="Mindlin-Deresiewicz (theory §11.2)")
+                label="Mindlin-Deresiewicz (docs/theory.md §11.2)")
         ax.plot(t, [cm.reloading_shift(x, ti) / view.U0 for ti in t], "--", color=MDR_COLOUR, lw=1.2)
     ax.set_xlabel(r"$f_t = F_t/(\mu F_n)$ (mean $F_n$)")
     ax.set_ylabel(r"$u = U/U_0$ (along $F_t$)")
@@ -73,6 +73,5 @@ def loads_figure(view: RunView):
         ax2.legend(fontsize=8, loc="lower right")
     amp = (f"$f_t$ = {view.scene.f_t:.3g} ± {ld.ft_amplitude:.3g}, $F_n$ = {ld.Fn:.4g} N ± "
            f"{100 * ld.fn_amplitude:.3g} %, phase {ld.phase:g}°, $w$ = {view.w:.3g}")
-    who = view.label if view.w > 0 else "no rolling" + (" (MDR 1-D)" if view.is_mdr else "")
-    fig.suptitle(f"{who}: {amp}  ({view.state})", fontsize=11)
+    fig.suptitle(f"{view.label}: {amp}  ({view.state.replace('_', ' ')})", fontsize=11)
     return fig

@@ -1,8 +1,9 @@
 """Figures of sweeps and limit searches over the phase of oscillating loads (`rollcontact plot OUTDIR` when the
 folder's runs differ in load.phase; docs/oscillating_loads.md):
 
-* `<folder>_phase`: per rolling setting, the state of each run over (phase, amplitude) (shakedown o, ratcheting x,
-  coloured by u_sd or labelled with du per period) and the frictional work of the last period over mu Fn U0
+* `<folder>_phase`: per rolling setting, the state of each run over (phase, amplitude) (shakedown o, cyclic slip
+  (U settled, but slipping in every period) diamond, both coloured and labelled by u_sd; ratcheting x and undecided
+  square, labelled with du per period) and the frictional work of the last period over mu Fn U0
   against the phase, one line per amplitude (the physical measure of shakedown: it falls to 0 without slip);
 * `<folder>_phase_limits` (a limit search's limits.csv with a load.phase column): f_t,lim against the phase per
   setting and amplitude, the bracket as an error bar.
@@ -110,19 +111,23 @@ def phase_figure(points, title):
         for p in mine:
             y = getattr(p, key)
             if p.state in SETTLED_STATES and p.u_sd is not None:
-                sc = ax.scatter(p.phase, y, c=[p.u_sd], cmap="viridis", norm=norm, s=90, edgecolors="k")
+                sc = ax.scatter(p.phase, y, c=[p.u_sd], cmap="viridis", norm=norm, s=90, edgecolors="k",
+                                marker="o" if p.state == "shakedown" else "D")
                 ax.annotate(f"{p.u_sd:.3f}", (p.phase, y), xytext=(0, 8), textcoords="offset points",
                             ha="center", fontsize=7)
             else:
                 ax.plot(p.phase, y, "x" if p.state == "ratcheting" else "s", color="crimson", ms=9, mew=2)
-                label = f"Δu {p.du:.2g}" if p.du is not None else p.state
+                label = f"Δu {p.du:.2g}" if p.du is not None and p.state in ("ratcheting", "undecided") \
+                    else p.state.replace("_", " ")
                 ax.annotate(label, (p.phase, y), xytext=(0, 8), textcoords="offset points", ha="center",
                             fontsize=7, color="crimson")
-        ax.set_title(f"{name}: o shakedown (colour, label: $u_{{sd}}$), x ratcheting (Δu per period)", fontsize=9)
+        ax.set_title(f"{name}\no shakedown, ◇ cyclic slip: colour and label $u_{{sd}}$\nx ratcheting, ■ undecided: "
+                     "label Δu per period", fontsize=9)
+        ax.margins(y=0.2)           # room above the top row for its labels
         ax.set_xlabel("phase of the load oscillation relative to the rolling (deg)")
         ax.set_ylabel(f"load.{key}" + (" (units of μFn)" if key == "ft_amplitude" else " (relative)"))
         ax.set_xticks(np.arange(0, 361, 45))
-        ax.set_xlim(-20, 355)
+        ax.set_xlim(-35, 350)      # room for the labels of the first and last phase
         ax.grid(alpha=0.3)
         for amp, shade in zip(amps, shades):
             row = sorted((p for p in mine if getattr(p, key) == amp and p.work is not None), key=lambda p: p.phase)

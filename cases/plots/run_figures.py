@@ -8,7 +8,7 @@
   tau_x/mu p0 with the Coulomb bound mu p/(mu p0) = p/p0 and, when a full period is stored, the bound at the
   minimum pressure of the period, mu p_min/(mu p0); u_x/U0 with u_sd.
 * compare: the same maps on shared colour scales plus B - A (diverging), centre lines and histories overlaid.
-Units mm, N, MPa; normalisations as in cases/plots.py.
+Units mm, N, MPa; normalisations as in cases/plots/common.py.
 """
 from __future__ import annotations
 
@@ -34,36 +34,42 @@ REGION_NORM = BoundaryNorm(np.arange(-0.5, len(REGION_COLOURS)), len(REGION_COLO
 
 
 # ------------------------------------------------------------------------------------------ history
+def _outcome(v: RunView) -> str:
+    """The run's outcome for its legend entry: u_sd when U settled, else the state and du per period."""
+    if v.state in SETTLED_STATES and v.u_sd is not None:
+        return f"$u_{{sd}}$ = {v.u_sd:.3f}" + (" (cyclic slip)" if v.state == "cyclic_slip" else "")
+    if v.du is not None:
+        return f"{v.state}, Δu = {v.du:.3g} per period"
+    return v.state.replace("_", " ")
+
+
 def history_figure(views: list[RunView]):
-    """u = U/U0 (along Ft) versus periods for one or more runs, with u_stat, u_sd, MDR u_sd (seed Fig. 4)."""
+    """u = U/U0 (along Ft) versus periods for one or more runs, with u_stat, u_sd, MDR u_sd (seed Fig. 4).
+
+    The values (u_sd or du per period, u_stat) are given in the legend, beside the curve they belong to, and the
+    settled u_sd is marked by a dot at the end of its curve: labels on the curves would cross the other runs'."""
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=FIGSIZE["history"], sharex=True, height_ratios=(3, 1.2),
                                   layout="constrained")
     extra = []
     done = set()
-    stats = set()
-    for i, v in enumerate(views):
+    stats = []
+    for v in views:
         t, u = v.periods(), v.u()
-        dy = 7 if i % 2 == 0 else -14
         ls = "--" if v.is_mdr else "-"
-        ax.plot(t, u, ls, color=v.colour, lw=1.6, label=f"{v.label}: $f_t$ = {v.f_t:.3g}, $w$ = {v.w:.3g}")
-        if v.u_stat is not None and round(v.u_stat, 4) not in stats:
-            stats.add(round(v.u_stat, 4))
+        ax.plot(t, u, ls, color=v.colour, lw=1.6, label=f"{v.label}: $f_t$ = {v.f_t:.3g}, $w$ = {v.w:.3g}; "
+                                                            f"{_outcome(v)}")
+        if v.u_stat is not None and round(v.u_stat, 4) not in [round(x, 4) for x in stats]:
+            stats.append(v.u_stat)
             ax.axhline(v.u_stat, color="k", ls=(0, (4, 3)), lw=0.8)
-            ax.annotate(f"$u_{{stat}}$ = {v.u_stat:.3f}", (t[-1], v.u_stat), xytext=(-2, -11), ha="right",
-                        textcoords="offset points", fontsize=8)
         if v.state in SETTLED_STATES and v.u_sd is not None:
             ax.plot(t[-1], v.u_sd, "o", color=v.colour, ms=6)
-            ax.annotate(f"$u_{{sd}}$ = {v.u_sd:.3f}", (t[-1], v.u_sd), xytext=(-8, dy), ha="right",
-                        textcoords="offset points", fontsize=9, color=v.colour)
-        elif v.du is not None:
-            ax.annotate(f"{v.state}: Δu = {v.du:.3g} per period", (t[-1], u[-1]), xytext=(-8, dy), ha="right",
-                        textcoords="offset points", fontsize=9, color=v.colour)
         ax2.plot(t, np.divide(v.data.history["stick_area"], v.data.history["contact_area"]), ls,
                  color=v.colour, lw=1.2)
-        # MDR closed forms (seed Eqs. 12, 15, 16) at this (f_t, w), drawn once per (f_t, w)
+        # MDR closed forms (seed Eqs. 12, 15, 16) at this (f_t, w), drawn once per (f_t, w). They hold for a
+        # monotonic ramp to f_t under constant loads: not after further force levels (load.levels) nor for loads
+        # oscillating within the period.
         key = (round(v.f_t, 6), round(v.w, 6))
-        # they hold for a monotonic ramp to f_t; after further force levels (load.levels) they do not apply
-        if v.w <= 0 or key in done or not 0 <= v.f_t <= 1 or v.scene.load.levels:
+        if (v.w <= 0 or key in done or not 0 <= v.f_t <= 1 or v.scene.load.levels or v.scene.oscillating):
             continue
         done.add(key)
         beyond = []
@@ -72,16 +78,20 @@ def history_figure(views: list[RunView]):
                 usd = lim.u_shakedown(v.f_t, v.w, kappa)
                 ax.plot([0, t[-1]], [usd, usd], ":", color=colour, lw=1.1)
                 extra.append(Line2D([], [], ls=":", color=colour, lw=1.1,
-                                    label=f"MDR $u_{{sd}}$, {label}" + (f" at $w$ = {v.w:.3g}" if len(views) > 1
-                                                                         else "")))
+                                    label=f"MDR $u_{{sd}}$ = {usd:.3f}, {label}" + (f" at $w$ = {v.w:.3g}"
+                                                                                   if len(views) > 1 else "")))
             else:
                 beyond.append(f"{kappa:g}")
         if beyond:
             extra.append(Line2D([], [], ls="none", label=f"beyond the shakedown limit for κ = {', '.join(beyond)}"
                                 + f" ($f_t$ = {v.f_t:.3g}, $w$ = {v.w:.3g})"))
     handles, _ = ax.get_legend_handles_labels()
-    handles += [Line2D([], [], ls=(0, (4, 3)), color="k", lw=0.8, label="$u_{stat}$ (Mindlin, seed Eq. 4)")]
-    ax.legend(handles=handles + extra, fontsize=8, loc="lower right")
+    if stats:
+        handles += [Line2D([], [], ls=(0, (4, 3)), color="k", lw=0.8, label="$u_{stat}$ (Mindlin, seed Eq. 4) = "
+                           + ", ".join(f"{x:.3f}" for x in stats))]
+    # above the axes: inside, the legend of a run whose u swings over the whole axis would hide part of it
+    fig.legend(handles=handles + extra, fontsize=8, loc="outside upper center", ncol=2 if len(handles + extra) > 3
+               else 1)
     ax.set_ylabel("$u = U/U_0$ (along $F_t$)")
     ax.grid(alpha=0.3)
     if min(float(np.min(v.u(), initial=0.0)) for v in views) >= 0.0:
@@ -174,8 +184,7 @@ def _map_panels(axes, view, step, lims, colorbars=True, fig=None, extent=None):
             cb = fig.colorbar(im, ax=ax, shrink=0.85)
             if k == 3 and view.state in SETTLED_STATES and view.u_sd is not None:
                 cb.ax.axhline(view.u_sd, color="k", lw=1.5)
-                cb.ax.text(1.05, view.u_sd, " $u_{sd}$", transform=cb.ax.get_yaxis_transform(), fontsize=8,
-                           va="center")
+                cb.set_label(f"black line: $u_{{sd}}$ = {view.u_sd:.3f}", fontsize=8)
             if k == 4:
                 cb.set_ticks(range(len(REGION_NAMES)))
                 cb.set_ticklabels(REGION_NAMES, fontsize=7)
@@ -184,6 +193,8 @@ def _map_panels(axes, view, step, lims, colorbars=True, fig=None, extent=None):
 
 def _step_label(view, step):
     t = view.periods()[list(np.asarray(view.data.history["step"])).index(step)]
+    if view.w == 0:
+        return f"step {step} (period {t:.2f})"
     c = view.centre(step) @ view.e_r
     return f"step {step} (period {t:.2f}, centre at {c / view.a:+.2f} a along the rolling direction)"
 
@@ -353,20 +364,24 @@ def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwr
     (cases.plots.friction_figures), and when the file holds subsurface stresses
     _subsurface_step<N> and _subsurface_maxima (cases.plots.subsurface_figures)."""
     stem = view.path.stem
+    if not view.has_fields and step is not None:     # refused before any figure is drawn
+        raise PlotError(view.no_fields_note().replace("only the history figure is drawn",
+                                                      f"step {step} cannot be drawn"))
+    if view.has_fields:
+        step = view.resolve_step(step)
     paths = save_figure(history_figure([view]), out_dir, f"{stem}_history", overwrite)
     if view.scene.oscillating:       # loads oscillating within each period: hysteresis loop, work per period
         from rollcontact.cases.plots.load_figures import loads_figure
         paths += save_figure(loads_figure(view), out_dir, f"{stem}_loads", overwrite)
     if not view.has_fields:
-        if step is not None:
-            raise PlotError(view.no_fields_note().replace("only the history figure is drawn",
-                                                          f"step {step} cannot be drawn"))
         if notes is not None:
             notes.append(view.no_fields_note())
         return paths
-    step = view.resolve_step(step)
     paths += save_figure(maps_figure(view, step), out_dir, f"{stem}_maps_step{step}", overwrite)
     paths += save_figure(profiles_figure([view], [step]), out_dir, f"{stem}_centrelines_step{step}", overwrite)
+    if view.scene.viscoelastic:      # the pressure leaning forward and its centroid (docs/viscoelastic.md)
+        from rollcontact.cases.plots.visco_figures import plot_pressure
+        paths += plot_pressure(view.data, out_dir, f"{stem}_step{step}", step, overwrite)
     from rollcontact.cases.plots.friction_figures import plot_friction
     paths += plot_friction(view.data, out_dir, stem, step, overwrite=overwrite)    # a friction law's mu, slip velocity
     from rollcontact.cases.plots.subsurface_figures import plot_subsurface
@@ -378,16 +393,17 @@ def compare_runs(va: RunView, vb: RunView, out_dir, step: int | None = None, not
                  overwrite=False) -> list:
     """History overlay, maps with B - A and overlaid centre lines of two runs."""
     stem = f"compare_{va.path.stem}_vs_{vb.path.stem}"
-    paths = save_figure(history_figure([va, vb]), out_dir, f"{stem}_history", overwrite)
     missing = [v for v in (va, vb) if not v.has_fields]
+    if missing and step is not None:                  # refused before any figure is drawn
+        raise PlotError(missing[0].no_fields_note().replace("only the history figure is drawn",
+                                                            f"step {step} cannot be drawn"))
+    if not missing:
+        sa, sb = va.resolve_step(step), vb.resolve_step(step)
+    paths = save_figure(history_figure([va, vb]), out_dir, f"{stem}_history", overwrite)
     if missing:
-        if step is not None:
-            raise PlotError(missing[0].no_fields_note().replace("only the history figure is drawn",
-                                                                f"step {step} cannot be drawn"))
         if notes is not None:
             notes += [v.no_fields_note() for v in missing]
         return paths
-    sa, sb = va.resolve_step(step), vb.resolve_step(step)
     paths += save_figure(compare_maps_figure(va, sa, vb, sb), out_dir, f"{stem}_maps", overwrite)
     paths += save_figure(profiles_figure([va, vb], [sa, sb]), out_dir, f"{stem}_centrelines", overwrite)
     return paths

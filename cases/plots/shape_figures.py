@@ -1,6 +1,6 @@
 """Sweep figure of a folder whose runs are not of a sphere (`rollcontact plot OUTDIR` on a cone, power-law or
 rounded-flat-punch sweep; issue #27): the seed's closed forms (kappa curves, Eqs. 12-21) hold for the sphere only,
-so the runs are compared with the MDR of their own profile (theory.md §8.3 for any profile, solver.mdr.exact).
+so the runs are compared with the MDR of their own profile (docs/theory.md §8.3 for any profile, solver.mdr.exact).
 
 * <folder>_usd: u_sd versus f_t of the shaken-down runs (o parallel, ^ perpendicular, s the 1-D MDR model) with
   the profile's MDR u_sd(f_t) at each w and its end point (f_t,lim, u_lim), the profile's u_stat (w = 0) and, when
@@ -16,7 +16,6 @@ import numpy as np
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
-from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.cases.plots.common import FIGSIZE, MDR_COLOUR, save_figure, setting_colour, setting_of
 
 MARKERS = {"parallel": "o", "perpendicular": "^"}
@@ -33,7 +32,7 @@ def shape_usd_figure(points, scene, limits, title):
         f_lim, u_lim = tg.limit(w * a)
         ff = np.linspace(0, f_lim, 200)
         ax.plot(ff, [tg.shakedown_shift(x, w * a) for x in ff], "-.", color=MDR_COLOUR, lw=1.2,
-                label=f"MDR $u_{{sd}}$ of the profile, w = {w:g} (theory §8.3)")
+                label=f"MDR $u_{{sd}}$ of the profile, w = {w:g} (docs/theory.md §8.3)")
         ax.plot(f_lim, u_lim, "o", color=MDR_COLOUR, ms=5)
         ax.annotate(f"MDR limit {f_lim:.3f}", (f_lim, u_lim), xytext=(6, -10), textcoords="offset points", fontsize=8)
     for r in limits:                       # f_err = [[below], [above]] of read_limits
@@ -42,7 +41,7 @@ def shape_usd_figure(points, scene, limits, title):
                        alpha=0.25)
     handles = ax.get_legend_handles_labels()[0]
     for group in sorted({p.group for p in points}):
-        sel = [p for p in points if p.group == group and p.state in SETTLED_STATES and p.u_sd is not None]
+        sel = [p for p in points if p.group == group and p.on_eq13]
         for p in sel:
             colour = MDR_COLOUR if p.mdr else setting_colour(p.angle)
             ax.plot(p.f_t, p.u_sd, "s" if p.mdr else MARKERS.get(p.setting, "D"), color=colour, mec="k", ms=7)
@@ -59,7 +58,7 @@ def shape_usd_figure(points, scene, limits, title):
     ax.set_xlim(0, 1)
     ax.set_ylim(0, 1.02)
     ax.grid(alpha=0.3)
-    n_rat = sum(p.state not in SETTLED_STATES for p in points)
+    n_rat = sum(not p.on_eq13 for p in points)
     ax.set_title(f"Shakedown displacement, {scene.shape} profile: {title}\n{len(points)} runs, {n_rat} not in "
                  "shakedown (not shown); curves: the MDR of this profile", fontsize=10)
     return fig

@@ -6,10 +6,13 @@ holds no run files. `limits.csv` (from `rollcontact limit-search`) is drawn when
 
 * <folder>_usd:        u_sd versus f_t for each w (seed Fig. 8), MDR u_sd for kappa = 1 (Eq. 15), 1.1 (Eq. 16)
                        and 3/2 (Eq. 12), u_stat (Eq. 4) and the end points u_lim = 1 - w_lim^2 (Eq. 17);
-                       the fitted kappa of each alignment (fit_kappa over its shakedown runs, limit-search
-                       probes in runs/ excluded: fit_points) in the legend.
+                       the fitted kappa of each alignment (fit_kappa over its runs shaken down under constant
+                       loads, Point.on_eq13; limit-search probes in runs/ excluded: fit_points) in the legend.
+                       Runs in cyclic slip, or with loads oscillating within the period, are outside seed Eq. 13:
+                       neither drawn nor fitted (the phase figures show them).
 * <folder>_limits:     the (f_t, w) plane (seed Fig. 9 axes: w_lim versus f_t,lim): every run as a marker
-                       (filled shakedown, open ratcheting), Eqs. 18-19 and the MDR limit, limit-search brackets.
+                       (filled shakedown, open ratcheting, half undecided, light cyclic slip), Eqs. 18-19 and the
+                       MDR limit, limit-search brackets.
 * <folder>_ratcheting: du per period versus f_t beyond the limit (seed Fig. 11) with Eqs. 20-21.
 * <folder>_angles:     with three or more alignments (a sweep over motion.angle): kappa, u_sd, du, the sideways
                        walk and f_t,lim against the angle (cases.plots.angle_figures).
@@ -28,7 +31,6 @@ import numpy as np
 import matplotlib.pyplot as plt
 from matplotlib.lines import Line2D
 
-from rollcontact.solver.rolling.shakedown import SETTLED_STATES
 from rollcontact.solver.mdr import limits as lim
 
 from rollcontact.cases.results.hdf5 import stored_summary
@@ -60,6 +62,7 @@ class Point:
     du_perp: float | None = None   # change of U_perp over the last period, / U0 (the sideways walk)
     u_perp: float | None = None    # final U_perp / U0 (the sideways offset)
     raw_angle: float | None = None  # motion.angle as given (deg), before folding to 0..90
+    oscillating: bool = False      # loads varying within the period (load.ft_amplitude, fn_amplitude)
 
     @property
     def setting(self) -> str:
@@ -68,6 +71,12 @@ class Point:
     @property
     def group(self) -> str:
         return self.setting + (" (MDR 1-D)" if self.mdr else "")
+
+    @property
+    def on_eq13(self) -> bool:
+        """A run seed Eq. 13 describes: shaken down (U settled and no more slip) under constant loads. Cyclic slip
+        (U settled, but slipping in every period) and loads oscillating within the period are outside it."""
+        return self.state == "shakedown" and not self.oscillating and self.u_sd is not None
 
 
 def _num(v):
@@ -107,7 +116,7 @@ def read_point(path) -> Point:
                  state=str(attrs.get("state") or "?"), u_sd=_num(attrs.get("u_sd")), du=_num(attrs.get("du")),
                  u_stat=_num(attrs.get("u_stat")), du_perp=None if walk is None or not U0 else walk / U0,
                  u_perp=None if side is None or not U0 else side / U0,
-                 raw_angle=float(scene.motion.angle))
+                 raw_angle=float(scene.motion.angle), oscillating=scene.oscillating)
 
 
 def _points_from_csv(path) -> list[Point]:
@@ -210,9 +219,19 @@ def _marker(p: Point) -> str:
     return "s" if p.mdr else MARKERS.get(p.setting, "D")
 
 
+def _w_legend(target, handles, ws, styles, **kwargs):
+    """The legend (of an axes or a figure) with an entry per amplitude w: the (line style, colour) of every curve
+    family side by side in that w's shade (labels at the curves' ends would cross the other curves)."""
+    from matplotlib.legend_handler import HandlerTuple
+    handles = handles + [tuple(Line2D([], [], ls=ls, color=_shade(colour, k, len(ws)), lw=1.4)
+                               for ls, colour in styles) for k in range(len(ws))]
+    labels = [h.get_label() for h in handles[:len(handles) - len(ws)]] + [f"w = {w:g}" for w in ws]
+    target.legend(handles, labels, handler_map={tuple: HandlerTuple(ndivide=None, pad=0.3)}, **kwargs)
+
+
 def fit_points(points) -> list:
     """The runs kappa is fitted to: the sweep's own runs; the limit-search probes (runs/) only when the folder
-    has nothing else. Probes crowd around the shakedown limit, where u_sd is most sensitive to kappa and to
+    has nothing else (of those, kappa_by keeps the ones seed Eq. 13 describes, Point.on_eq13). Probes crowd around the shakedown limit, where u_sd is most sensitive to kappa and to
     the grid, so they would weigh the fit towards the limit instead of over the sweep's range."""
     sweep = [p for p in points if not p.probe]
     return sweep if sweep else list(points)
@@ -231,7 +250,8 @@ def fit_scope(points) -> str | None:
 
 
 def kappa_fits(points) -> dict:
-    """fit_kappa (seed Eq. 13) per alignment group over its shaken-down runs with w > 0 (see fit_points)."""
+    """fit_kappa (seed Eq. 13) per alignment group over its runs shaken down under constant loads with w > 0 (see
+    fit_points and Point.on_eq13)."""
     return kappa_by(fit_points(points), lambda p: p.group)
 
 
@@ -257,36 +277,37 @@ def usd_figure(points, title):
             c = _shade(colour, k, len(ws)) if kappa != lim.KAPPA_MDR else MDR_COLOUR
             ax.plot(ff, u, ls, color=c, lw=1.4 if kappa != lim.KAPPA_MDR else 0.8)
             ax.plot(fl, u[-1], ".", color=c, ms=5)
-        ax.annotate(f"w = {w:g}", (lim.f_t_lim(w, lim.KAPPA_PARALLEL), lim.u_lim(w)), xytext=(5, -3),
-                    textcoords="offset points", fontsize=8, color="k")
     wl = np.linspace(0, 1, 200)
     for kappa, colour in ((lim.KAPPA_PARALLEL, PARALLEL_COLOUR), (lim.KAPPA_PERPENDICULAR, PERPENDICULAR_COLOUR)):
         ax.plot(lim.f_t_lim(wl, kappa), lim.u_lim(wl), "--", color=colour, lw=0.8, alpha=0.7)
     fits = kappa_fits(points)
     handles = []
     for g in sorted({p.group for p in points}):
-        sel = [p for p in points if p.group == g and p.state in SETTLED_STATES and p.u_sd is not None]
+        sel = [p for p in points if p.group == g and p.on_eq13]
         if not sel:
             continue
         for p in sel:
             k = ws.index(round(p.w, 6)) if round(p.w, 6) in ws else 0
             base = MDR_COLOUR if p.mdr else setting_colour(p.angle)
             ax.plot(p.f_t, p.u_sd, _marker(p), color=_shade(base, k, len(ws)), mec="k", mew=0.6, ms=7)
-        fit = f": fitted {format_fit(fits[g])}" if g in fits else ""
+        fit = f": fitted κ = {fits[g].kappa:.3f}" + (f" ± {fits[g].stderr:.2g}" if fits[g].stderr is not None else "") \
+            + f" (n = {fits[g].n})" if g in fits else ""
         handles.append(Line2D([], [], ls="none", marker=_marker(sel[0]), mfc="w", mec="k",
                               label=f"simulated, {g}{fit}"))
     handles += [Line2D([], [], ls=ls, color=colour, label=f"MDR $u_{{sd}}$, {label}")
                 for _, ls, colour, label in CURVES]
     handles += [Line2D([], [], ls="--", color="0.4", lw=0.8, label="$u_{lim} = 1 - w_{lim}^2$ (Eq. 17)")]
-    ax.legend(handles=handles, fontsize=8, loc="upper left")
-    n_rat = sum(p.state not in SETTLED_STATES for p in points)
+    # below the axes: inside, a legend of this length would hide curves or runs wherever it went
+    _w_legend(fig, handles, ws, [(ls, colour) for _, ls, colour, _ in CURVES[:2]], fontsize=8,
+              loc="outside lower center", ncol=2)
+    n_off = sum(not p.on_eq13 for p in points)
     ax.set_xlabel("$f_t = F_t/(\\mu F_n)$")
     ax.set_ylabel("$u_{sd} = U_{sd}/U_0$")
     ax.set_xlim(0, 1)
     ax.set_ylim(0, 1.02)
     ax.grid(alpha=0.3)
-    ax.set_title(f"Shakedown displacement (seed Fig. 8): {title}\n{len(points)} runs, "
-                 f"{n_rat} not in shakedown (not shown); colours darker for larger w", fontsize=10)
+    ax.set_title(f"Shakedown displacement (seed Fig. 8): {title}\n{len(points)} runs, {n_off} not in shakedown "
+                 "(not shown); colours darker for larger w", fontsize=10)
     return fig
 
 
@@ -300,11 +321,10 @@ def limits_figure(points, limits, title):
     shown = set()
     for p in points:
         base = MDR_COLOUR if p.mdr else setting_colour(p.angle)
-        filled = p.state in SETTLED_STATES
-        lab = f"{p.group}, {'shakedown' if filled else p.state}"
-        ax.plot(p.f_t, p.w, _marker(p), color=base, mfc=base if filled or p.state == "undecided" else "w",
-                fillstyle="bottom" if p.state == "undecided" else "full", mew=1.2,
-                ms=10 if p.setting == "parallel" else 6, label=None if lab in shown else lab)
+        face = {"shakedown": base, "undecided": base, "cyclic_slip": _shade(base, 0, 4)}.get(p.state, "w")
+        lab = f"{p.group}, {p.state.replace('_', ' ')}"
+        ax.plot(p.f_t, p.w, _marker(p), color=base, mfc=face, fillstyle="bottom" if p.state == "undecided" else "full",
+                mew=1.2, ms=10 if p.setting == "parallel" else 6, label=None if lab in shown else lab)
         shown.add(lab)
     if limits:
         for r in limits:
@@ -318,6 +338,7 @@ def limits_figure(points, limits, title):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper right")
     ax.set_title(f"Shakedown limit (seed Fig. 9): {title}\nfilled: shakedown, open: ratcheting, half: undecided"
+                 + (", light: cyclic slip" if any(p.state == "cyclic_slip" for p in points) else "")
                  + ("" if limits else "; no limits.csv in the folder"), fontsize=10)
     return fig
 
@@ -334,9 +355,6 @@ def ratcheting_figure(points, title):
             m = du > 0
             if m.any():
                 ax.plot(f[m], du[m], ls, color=_shade(colour, k, len(ws)), lw=1.4)
-                if setting == "perpendicular":
-                    ax.annotate(f"w = {w:g}", (f[m][-1], du[m][-1]), xytext=(-4, 3), textcoords="offset points",
-                                ha="right", fontsize=8, color=_shade(colour, k, len(ws)))
     for p in rat:
         k = ws.index(round(p.w, 6)) if round(p.w, 6) in ws else 0
         base = MDR_COLOUR if p.mdr else setting_colour(p.angle)
@@ -347,7 +365,7 @@ def ratcheting_figure(points, title):
     for g in sorted({p.group for p in rat}):
         p = next(q for q in rat if q.group == g)
         handles.append(Line2D([], [], ls="none", marker=_marker(p), mfc="w", mec="k", label=f"simulated, {g}"))
-    ax.legend(handles=handles, fontsize=8, loc="upper left")
+    _w_legend(ax, handles, ws, [(":", PARALLEL_COLOUR), ("-", PERPENDICULAR_COLOUR)], fontsize=8, loc="upper left")
     ax.set_xlabel("$f_t = F_t/(\\mu F_n)$")
     ax.set_ylabel("$\\Delta u$ per period $= \\Delta U/U_0$")
     ax.set_xlim(0, 1)
@@ -360,9 +378,13 @@ def ratcheting_figure(points, title):
 
 
 def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) -> list:
-    """The three sweep figures of `folder` into out_dir (default: the folder), and the phase figures of
-    cases.plots.phase_figures when its runs differ in load.phase; prints the fitted kappas."""
+    """The three sweep figures of `folder` into out_dir (default: the folder) from its runs under constant loads,
+    and the phase figures of cases.plots.phase_figures when its runs differ in load.phase; prints the fitted
+    kappas."""
     folder = Path(folder)
+    from rollcontact.cases.plots.wheelrail_figures import is_wheelrail_folder, plot_wheelrail_folder
+    if is_wheelrail_folder(folder):                     # a sweep over a [wheelrail] scene
+        return plot_wheelrail_folder(folder, Path(out_dir) if out_dir else folder, overwrite, out)
     points = read_folder(folder, notes)
     out_dir = Path(out_dir) if out_dir else folder
     limits_path = folder / "limits.csv"
@@ -374,19 +396,29 @@ def plot_folder(folder, out_dir=None, notes=None, out=print, overwrite=False) ->
     if scene is not None and scene.shape in ("cone", "power", "flat_rounded"):
         from rollcontact.cases.plots.shape_figures import plot_shape_folder    # the profile's own MDR
         return plot_shape_folder(points, scene, limits, out_dir, folder.resolve().name, title, out, overwrite)
-    fits = kappa_fits(points)
-    if fit_scope(points):
-        out(fit_scope(points))
-    for g in sorted({p.group for p in points}):
-        out(f"fitted kappa (seed Eq. 13), {g}: " + (format_fit(fits[g]) if g in fits
-                                                   else "no shaken-down run with w > 0, no fit"))
     stem = folder.resolve().name
-    paths = save_figure(usd_figure(points, title), out_dir, f"{stem}_usd", overwrite)
-    paths += save_figure(limits_figure(points, limits, title), out_dir, f"{stem}_limits", overwrite)
-    paths += save_figure(ratcheting_figure(points, title), out_dir, f"{stem}_ratcheting", overwrite)
-    if len(study_angles(points)) >= 3:
-        out(angle_fit_text(points, limits))
-        paths += save_figure(angle_figure(points, limits, title), out_dir, f"{stem}_angles", overwrite)
+    paths = []
+    # the seed's figures and closed forms are for constant loads: runs with loads oscillating within the period
+    # are drawn in the phase figures instead
+    steady = [p for p in points if not p.oscillating]
+    if len(steady) < len(points) and notes is not None:
+        which = (f"{len(points) - len(steady)} run(s) with loads oscillating within the period are left out of the "
+                 "seed's figures" if steady else "its runs have loads oscillating within the period: the seed's "
+                 "figures are not drawn")
+        notes.append(f"{folder}: {which} (Figs. 8, 9, 11: constant loads); the phase figures show them")
+    if steady:
+        fits = kappa_fits(steady)
+        if fit_scope(steady):
+            out(fit_scope(steady))
+        for g in sorted({p.group for p in steady}):
+            out(f"fitted kappa (seed Eq. 13), {g}: " + (format_fit(fits[g]) if g in fits
+                                                       else "no shaken-down run with w > 0, no fit"))
+        paths += save_figure(usd_figure(steady, title), out_dir, f"{stem}_usd", overwrite)
+        paths += save_figure(limits_figure(steady, limits, title), out_dir, f"{stem}_limits", overwrite)
+        paths += save_figure(ratcheting_figure(steady, title), out_dir, f"{stem}_ratcheting", overwrite)
+        if len(study_angles(steady)) >= 3:
+            out(angle_fit_text(steady, limits))
+            paths += save_figure(angle_figure(steady, limits, title), out_dir, f"{stem}_angles", overwrite)
     from rollcontact.cases.plots.phase_figures import plot_phase      # runs differing in load.phase, if any
     paths += plot_phase(folder, sorted(folder.glob("*.h5")) + sorted(folder.glob("runs/*.h5")), out_dir, overwrite,
                         out)

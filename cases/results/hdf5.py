@@ -11,25 +11,29 @@ Layout (public contract; later versions add to it, never rename):
     /fields/<name>      shape (snapshots, ny, nx); /fields/step says which steps were stored (FIELD_UNITS)
     /summary            attrs: run summary (state, u_sd, ...); a value that does not apply (u_sd of a
                         ratcheting run, say) is NaN, or -1 for the counts in SUMMARY_COUNTS, as in a
-                        sweep's summary.h5 (files of version 0.1.0 before 2026-11-24 wrote the text 'none')
+                        sweep's summary.h5 (readers also accept the text 'none', which the first files of
+                        version 0.1.0 wrote)
+    /patches/<k>/       a [wheelrail] run's contact patches k = 0, 1, ...: grid/x, grid/y and fields/<name>
+                        (1, ny, nx) as at the root, in the patch's tangent plane; attrs: the patch's values
+                        (cases.results.run_result.PATCH_UNITS)
 
 A reader that opens a file sees either nothing (no file) or a complete file: the rename is atomic on
 POSIX file systems. A run that fails still writes what it computed, with status = 'failed'.
 """
 from __future__ import annotations
 
-from contextlib import contextmanager
 import functools
 import math
-import os
 from pathlib import Path
-import threading
 import zlib
 
 import h5py
 import numpy as np
 
-from rollcontact.cases.results.run_result import UNITS, RunResult
+from rollcontact.cases.results.run_result import UNITS, PatchData, RunResult
+from rollcontact.cases.results.subsurface import Subsurface
+# re-exported: the modules that add to a run file write through them
+from rollcontact.cases.results.writing import new_hdf5, replacing, wait_for_replaced, write_bytes  # noqa: F401
 
 #: deflate level of the field snapshots (h5py's default for gzip)
 GZIP_LEVEL = 4
@@ -48,19 +52,18 @@ def version() -> str:
     return __version__
 
 
-def write_run(path, data: RunResult, chunks: dict | None = None, extend=None) -> Path:
-    """Write `data` to `path` atomically (a temporary file in the same folder, renamed into place); returns the
-    path. chunks: {field name: [gzip-compressed (ny, nx) snapshots]} already compressed by the caller (a run
-    compresses each snapshot once, when it is recorded); the other fields are compressed here. Every snapshot is
-    one gzip chunk either way. extend: callable(h5) that adds to the file before it is renamed into place (the
-    /subsurface of `run --stresses`)."""
+def write_run(path, data: RunResult, chunks: dict | None = None, extend=None, what: str = "run file") -> Path:
+    """Write `data` to `path` atomically (a temporary file in the same folder, renamed into place; its folder must
+    exist); returns the path. chunks: {field name: [gzip-compressed (ny, nx) snapshots]} already compressed by the
+    caller (a run compresses each snapshot once, when it is recorded); the other fields are compressed here. Every
+    snapshot is one gzip chunk either way. extend: callable(h5) that adds to the file before it is renamed into place
+    (the /subsurface of `run --stresses`). OutputWriteError naming the file when it cannot be written (nothing is
+    left under its name; cases.results.writing)."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with _replacing(path) as tmp:
-        with h5py.File(tmp, "w") as h5:
-            fill_run(h5, data, chunks or {})
-            if extend is not None:
-                extend(h5)
+    with new_hdf5(path, what) as (h5, _):
+        fill_run(h5, data, chunks or {})
+        if extend is not None:
+            extend(h5)
     return path
 
 
@@ -79,69 +82,46 @@ def fill_run(h5, data: RunResult, chunks: dict, growable: bool = False):
                                                     else {}))
     _write_fields(h5.create_group("fields"), data, chunks, growable)
     write_summary_attrs(h5.create_group("summary").attrs, data.summary)
+    if data.patches:
+        _write_patches(h5.create_group("patches"), data.patches)
 
 
-def save_image(path, image: bytes) -> Path:
-    """Write the bytes of an HDF5 file image to `path` atomically (a temporary file, renamed into place)."""
-    path = Path(path)
-    with _replacing(path) as tmp:
-        with open(tmp, "wb") as fh:
-            fh.write(image)
-    return path
+def _write_patches(group, patches):
+    """/patches/<k>/: grid, fields (one snapshot, gzip) and the patch's values as attributes."""
+    for k, patch in enumerate(patches):
+        g = group.create_group(str(k))
+        grid = g.create_group("grid")
+        _dataset(grid, "x", np.asarray(patch.x))
+        _dataset(grid, "y", np.asarray(patch.y))
+        fields = g.create_group("fields")
+        _dataset(fields, "step", np.zeros(1 if patch.fields else 0, dtype=np.int64))
+        for name, values in patch.fields.items():
+            values = np.asarray(values)[None]
+            _dataset(fields, name, values, chunks=values.shape, compression="gzip", compression_opts=GZIP_LEVEL)
+        for key, value in patch.values.items():
+            g.attrs[key] = _attr_value(key, value)
+        if patch.history:
+            history = g.create_group("history")
+            for name, values in patch.history.items():
+                _dataset(history, name, np.asarray(values))
 
 
-def replacing(path):
-    """A temporary file beside `path` to write, renamed over `path` when the block ends without an error (the
-    modules that add to a run file, e.g. cases.results.subsurface, write through it)."""
-    return _replacing(Path(path))
+def _read_patches(h5) -> list:
+    if "patches" not in h5:
+        return []
+    out = []
+    for k in sorted(h5["patches"], key=int):
+        g = h5["patches"][k]
+        fields = {n: v[0] for n, v in ((n, g["fields"][n][()]) for n in g["fields"] if n != "step") if len(v)}
+        history = {n: v[()] for n, v in g["history"].items()} if "history" in g else {}
+        out.append(PatchData(g["grid/x"][()], g["grid/y"][()], fields, summary_from_attrs(g.attrs), history))
+    return out
 
 
-@contextmanager
-def _replacing(path: Path):
-    """A temporary file beside `path` (.<name>.<pid>.tmp) to write, renamed over `path` when the block ends
-    without an error (`_replace`) and removed in every case."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        yield tmp
-        _replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
-
-
-def _replace(tmp: Path, path: Path):
-    """os.replace(tmp, path), with the replaced file's last link removed in a background thread: freeing a file's
-    blocks took 4-7 ms on the development machine (ext4 mounted with discard), the largest single cost of a
-    checkpoint, while the rename itself takes microseconds. `path` names a complete file at every moment.
-    `wait_for_replaced` joins the pending removals (a run does so after its final write)."""
-    old = None
-    if path.exists():
-        old = path.with_name(f".{path.name}.{os.getpid()}.old")
-        try:
-            os.link(path, old)
-        except OSError:          # no hard links here (or a leftover of this pid): remove it in line
-            old = None
-    os.replace(tmp, path)
-    if old is not None:
-        thread = threading.Thread(target=_unlink_quietly, args=(old,), name="rollcontact-unlink")
-        thread.start()
-        _pending.append(thread)
-
-
-def _unlink_quietly(path: Path):
-    try:
-        path.unlink()
-    except OSError:
-        pass
-
-
-#: background removals of replaced run files (see _replace)
-_pending: list = []
-
-
-def wait_for_replaced():
-    """Wait until the files replaced by `write_run` and `save_image` are removed."""
-    while _pending:
-        _pending.pop().join()
+def save_image(path, image: bytes, what: str = "checkpoint") -> Path:
+    """Write the bytes of an HDF5 file image to `path` atomically (a temporary file, renamed into place);
+    OutputWriteError naming the file when it cannot be written (the file it would replace is kept)."""
+    return write_bytes(path, image, what)
 
 
 def append(dataset, values: np.ndarray, start: int):
@@ -164,16 +144,19 @@ def _same_value(a, b) -> bool:
 
 
 def root_attrs(h5, data: RunResult):
-    """Status, error and the further root attributes of `data` on the open file `h5`."""
+    """Status, error and the further root attributes of `data` on the open file `h5` (a list of texts, such as
+    restart_overrides, as an array of strings, also when empty)."""
     h5.attrs["status"] = data.status
     h5.attrs["error"] = data.error
     for key, value in data.attrs.items():
+        if isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+            value = np.array(list(value), dtype=h5py.string_dtype())
         h5.attrs[key] = value
 
 
 def write_summary_attrs(attrs, summary: dict, stored: dict | None = None):
     """The summary as attributes (NaN / -1 where a value does not apply); with `stored` (what the attributes hold
-    now), only what changed is written and what went is deleted: an attribute write costs 0.1-0.2 ms."""
+    already), only what changed is written and what went is deleted: an attribute write costs 0.1-0.2 ms."""
     for key in [k for k in (stored or {}) if k not in summary]:
         del attrs[key]
     for key, value in summary.items():
@@ -218,8 +201,18 @@ def read_run_file(path, error, label) -> RunResult:
     try:
         return read_run(p)
     except (OSError, KeyError, ValueError, TypeError) as exc:
-        why = "not an HDF5 file" if isinstance(exc, OSError) else "HDF5, but without the run file layout"
+        why = ("HDF5, but without the run file layout" if not isinstance(exc, OSError) else
+               "a truncated or damaged HDF5 file" if _hdf5_signature(p) else "not an HDF5 file")
         raise error(f"{label}: not a run file written by rollcontact run ({why})") from None
+
+
+def _hdf5_signature(path) -> bool:
+    """True when the file starts with HDF5's signature (a truncated run file does)."""
+    try:
+        with open(path, "rb") as fh:
+            return fh.read(8) == b"\x89HDF\r\n\x1a\n"
+    except OSError:
+        return False
 
 
 def read_run(path) -> RunResult:
@@ -237,6 +230,8 @@ def read_run(path) -> RunResult:
             summary=summary_from_attrs(h5["summary"].attrs),
             attrs={k: _py(v) for k, v in h5.attrs.items() if k not in _ROOT_ATTRS},
             path=Path(path),
+            subsurface=Subsurface.of_file(path) if "subsurface" in h5 else Subsurface(),
+            patches=_read_patches(h5),
         )
 
 
@@ -309,4 +304,6 @@ def _py(v):
         return v.decode()
     if isinstance(v, np.generic):
         return v.item()
+    if isinstance(v, np.ndarray) and v.dtype.kind in "OSU":    # a list of texts (restart_overrides)
+        return [x.decode() if isinstance(x, bytes) else str(x) for x in v.tolist()]
     return v

@@ -19,6 +19,7 @@ import time
 
 from rollcontact.bem.errors import OutputInUseError
 from rollcontact.bem.wisdom import process_exists
+from rollcontact.cases.results.writing import write_failed
 
 
 def lock_path(output) -> Path:
@@ -59,7 +60,14 @@ class OutputLock:
 
     def acquire(self, wait: bool = False) -> "OutputLock":
         """Take the lock; OutputInUseError naming the holder when a live process holds it (with `wait`, wait for
-        it instead: for short critical sections such as the check of a sweep's table)."""
+        it instead: for short critical sections such as the check of a sweep's table); OutputWriteError naming the
+        lock file when it cannot be written (a read-only file system, a full disk)."""
+        try:
+            return self._acquire(wait)
+        except OSError as exc:
+            raise write_failed(self.output, exc, via=f"its lock file {self.path}") from None
+
+    def _acquire(self, wait: bool) -> "OutputLock":
         self.path.parent.mkdir(parents=True, exist_ok=True)
         if not _has_flock(self.path.parent):
             return self._acquire_by_link()

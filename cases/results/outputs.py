@@ -9,21 +9,27 @@ import re
 import tempfile
 
 from rollcontact.bem.errors import InputError
+from rollcontact.cases.arguments import arg
 
 
-def output_folder(path, option="-o") -> Path:
+def output_folder(path, option="output") -> Path:
     """The output folder `path` of sweep, limit-search, plot and compare, created if missing; InputError naming
-    the option when it (or a parent) is an existing file."""
+    the option (an API keyword, cases.arguments) when it (or a parent) is an existing file, or when it cannot be
+    created (a read-only file system, a full disk)."""
     folder = Path(path)
     try:
         folder.mkdir(parents=True, exist_ok=True)
     except (FileExistsError, NotADirectoryError):
-        raise InputError(f"{option} {path}: is a file (or lies under one), not a folder; give a folder name") from None
+        raise InputError(f"{arg(option)} {path}: is a file (or lies under one), not a folder; give a folder "
+                         "name") from None
+    except OSError as exc:
+        raise InputError(f"{arg(option)} {path}: cannot create the folder ({exc.strerror}); choose a writable "
+                         "location") from None
     return folder
 
 
 def check_output(path) -> Path:
-    """`path` as a Path if a run file can be written there; InputError naming -o otherwise.
+    """`path` as a Path if a run file can be written there; InputError naming the output (-o) otherwise.
 
     Refused: an existing directory (or a name ending in a path separator), a parent that is a file, and a
     folder where no file can be created (probed with a temporary file, which is removed at once; missing
@@ -32,7 +38,8 @@ def check_output(path) -> Path:
     raw = str(path)
     p = Path(path)
     if p.is_dir() or raw.endswith(("/", os.sep)):
-        raise InputError(f"-o {raw}: is a directory; give a file name, e.g. -o {p / 'run.h5'}")
+        raise InputError(f"{arg('output')} {raw}: is a directory; give a file name, e.g. {arg('output')} "
+                         f"{p / 'run.h5'}")
     parent = p.parent
     try:
         parent.mkdir(parents=True, exist_ok=True)
@@ -41,7 +48,7 @@ def check_output(path) -> Path:
         os.unlink(probe)
     except OSError as exc:
         why = exc.strerror or type(exc).__name__
-        raise InputError(f"-o {raw}: cannot write in {parent} ({why}); choose a writable location") from None
+        raise InputError(f"{arg('output')} {raw}: cannot write in {parent} ({why}); choose a writable location") from None
     return p
 
 

@@ -1,6 +1,6 @@
 """The subsurface stresses of a run file (/subsurface), read back: whole, as sections, or as block maxima.
 
-Layout (README, "HDF5 layout"; names and units in cases.results.run_result.SUBSURFACE_UNITS; written by
+Layout (docs/hdf5_schema.md; names and units in cases.results.run_result.SUBSURFACE_UNITS; written by
 cases.run.stresses):
 
     /subsurface         attrs: nu (the substrate's Poisson ratio used), depths ('default' or 'given')
@@ -14,10 +14,101 @@ s_zz = -p, s_xz = -tau_x, s_yz = -tau_y. They depend on the substrate's Poisson 
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
+from pathlib import Path
+
 import h5py
 import numpy as np
 
 from rollcontact.bem.errors import InputError
+from rollcontact.cases.results.run_result import SUBSURFACE_NAMES, UNITS, same_value
+
+
+class Subsurface(Mapping):
+    """The stresses below the contact of one run (RunResult.subsurface; the file's /subsurface): a mapping name ->
+    array of shape (len(steps), len(z), ny, nx) in MPa for the SUBSURFACE_NAMES (s_xx ... s_xy in the frame x, y,
+    z = depth, tension positive; von_mises, tresca, principal_1), read from the run file on first use.
+
+    `z`: the depths below the surface (mm); `steps`: the stored steps computed (a list); `x`, `y`: the grid (mm);
+    `nu`: the substrate's Poisson ratio used; `depths`: 'default' or 'given'; `units`: name -> unit (MPa, and mm for
+    x, y, z); `at(name, step)`: the (nz, ny, nx) block of one step. What the run that wrote them did: `computed`,
+    `reused` (the steps it computed, and those computed before a restart), `seconds` (computing). Empty (falsy, no
+    names) when the run holds no subsurface stresses. Equal when the depths, steps, nu and every array are."""
+
+    def __init__(self, path=None, *, z=None, steps=(), x=None, y=None, nu=None, depths=None, arrays=None,
+                 seconds=0.0, computed=(), reused=()):
+        self.path = None if path is None else Path(path)
+        self.z = np.zeros(0) if z is None else np.asarray(z, dtype=float)
+        self.steps = [int(s) for s in steps]
+        self.x, self.y, self.nu, self.depths = x, y, nu, depths
+        self.seconds, self.computed, self.reused = float(seconds), list(computed), list(reused)
+        self._arrays = dict(arrays or {})
+        self._names = list(self._arrays) if arrays is not None else (list(SUBSURFACE_NAMES) if self.steps else [])
+
+    @classmethod
+    def of_file(cls, path, **run_info) -> "Subsurface":
+        """The /subsurface of the run file `path` (empty when it holds none); its arrays are read on first use.
+        run_info: seconds, computed, reused of the run that wrote them."""
+        with h5py.File(path, "r") as h5:
+            if "subsurface" not in h5:
+                return cls(**run_info)
+            g = h5["subsurface"]
+            return cls(path, z=g["z"][()], steps=g["step"][()], x=h5["grid/x"][()], y=h5["grid/y"][()],
+                       nu=float(g.attrs["nu"]), depths=_text(g.attrs.get("depths", "")), **run_info)
+
+    @property
+    def units(self) -> dict:
+        """name -> unit of what it holds: the nine fields (MPa), z, x, y (mm), step ('-'); empty when empty."""
+        if not self:
+            return {}
+        return {**{name: UNITS[name] for name in self._names}, "z": "mm", "x": "mm", "y": "mm"}
+
+    def __getitem__(self, name) -> np.ndarray:
+        if name not in self._names:
+            raise KeyError(f"subsurface {name!r}: not held; held: {self._names or 'none (no subsurface stresses)'}")
+        if name not in self._arrays:
+            with h5py.File(self.path, "r") as h5:
+                self._arrays[name] = h5["subsurface"][name][()]
+        return self._arrays[name]
+
+    def __iter__(self):
+        return iter(self._names)
+
+    def __len__(self) -> int:
+        return len(self._names)
+
+    def at(self, name: str, step: int) -> np.ndarray:
+        """The (nz, ny, nx) block of `name` at a computed `step` (MPa); KeyError naming the computed steps."""
+        if int(step) not in self.steps:
+            raise KeyError(f"step {step}: no subsurface stresses; computed steps: {self.steps}")
+        return self[name][self.steps.index(int(step))]
+
+    def __eq__(self, other):
+        if not isinstance(other, Subsurface):
+            return NotImplemented
+        if not self and not other:
+            return True
+        return (bool(self) == bool(other) and self.steps == other.steps and same_value(self.z, other.z)
+                and same_value(self.nu, other.nu) and list(self) == list(other)
+                and all(same_value(self[n], other[n]) for n in self))
+
+    __hash__ = None
+
+    def __repr__(self) -> str:
+        if not self:
+            return "Subsurface(empty)"
+        z = f"{len(self.z)} depths {self.z[0]:.4g} ... {self.z[-1]:.4g} mm" if len(self.z) else "no depths"
+        return f"Subsurface(steps={_compact(self.steps)}, {z}, names={len(self)}, path={str(self.path)!r})"
+
+    def report(self) -> str:
+        """The line `rollcontact stresses` and `run --stresses` print: what was written where."""
+        reused = len(self.reused)
+        kept = f"; {reused} step(s) computed before and kept" if reused else ""
+        z = self.z
+        return (f"subsurface stresses of step(s) {_compact(self.steps)} at {len(z)} depths "
+                f"({z[0]:.4g} ... {z[-1]:.4g} mm) written to {self.path} (/subsurface; computed in {self.seconds:.2f} s"
+                f"{kept})")
+
 
 def read_subsurface(path) -> dict:
     """The /subsurface group of a run file as numpy arrays ({'z', 'step', name: (snapshots, nz, ny, nx)}), with
@@ -82,3 +173,7 @@ def block_maxima(path, names=("von_mises", "tresca")) -> dict:
 
 def _compact(steps) -> str:
     return ", ".join(map(str, steps)) if len(steps) <= 12 else f"{steps[0]}, {steps[1]}, ..., {steps[-1]}"
+
+
+def _text(value) -> str:
+    return value.decode() if isinstance(value, bytes) else str(value)

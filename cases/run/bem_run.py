@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import time
 
-from rollcontact.bem.errors import GrossSlidingError, RollcontactError
+from rollcontact.bem.errors import GrossSlidingError, OutputWriteError, RollcontactError
 from rollcontact.cases.results.hdf5 import version
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.run.discretise import field_steps, scene_grid, scene_operator, scene_path
 from rollcontact.cases.run.recorder import StepRecorder
 from rollcontact.cases.run.summary import summarise
+from rollcontact.cases.run.viscoelastic import scene_memory
 from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.normal import NormalParams
@@ -44,8 +45,13 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
     params = StepParams(NormalParams(tol=tol, max_iter=max_iter), TangentialParams(tol=tol, max_iter=max_iter),
                         coupling_tol=max(tol, 1e-10))
     friction = local_friction(scene)
+    memory = scene_memory(scene, op)      # viscoelastic bodies: their element states (None for elastic ones)
+    if memory is not None and restart is not None:
+        restart.restore(memory)
     recorder = StepRecorder(grid, path, field_steps(scene, path), restart, compress=checkpoint is not None,
-                            transverse=scene.transverse_direction, friction=friction is not None)
+                            transverse=scene.transverse_direction,
+                            states=() if memory is None else tuple(memory.states()), rolling=scene.rolling_direction,
+                            friction=friction is not None)
     result = partial(scene, path, grid, recorder, t_start)
     ends = set(path.period_ends().tolist())
     if progress:
@@ -58,7 +64,8 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
         if stresses is not None:
             stresses.catch_up(recorder)          # the snapshots a restart inherits
         for rec in run_path(op, scene.profile, path, Fn=scene.load.Fn, mu=scene.load.mu,
-                            params=params, state=None if restart is None else restart.state, friction=friction):
+                            params=params, state=None if restart is None else restart.state, memory=memory,
+                            friction=friction):
             row = recorder.add(rec)
             if stresses is not None:
                 stresses.catch_up(recorder)
@@ -71,6 +78,8 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
                          f"{row['tangential_iterations']}")
     except GrossSlidingError as exc:
         state_label, error = "gross_sliding", str(exc)
+    except OutputWriteError:
+        raise               # a checkpoint or a step's stresses could not be written: the run stops (cases.run.scene_run)
     except (RollcontactError, KeyboardInterrupt) as exc:
         status, interrupted = "failed", exc if isinstance(exc, KeyboardInterrupt) else None
         error = "interrupted by the user" if interrupted else f"{type(exc).__name__}: {exc}"

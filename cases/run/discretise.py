@@ -10,6 +10,8 @@ import numpy as np
 from rollcontact.bem.errors import InputError, SceneError
 from rollcontact.bem.grid import MAX_ELEMENTS, Grid, contact_box
 from rollcontact.bem.operator import HalfSpaceOperator
+from rollcontact.cases.run.viscoelastic import step_pair
+from rollcontact.cases.scene.extent import contact_extent, estimated  # noqa: F401  (re-exported)
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.schedule import LoadOscillation
 from rollcontact.solver.rolling.stepping import LoadPath, build_path
@@ -21,7 +23,7 @@ def scene_path(scene: Scene) -> LoadPath:
     ld = scene.load
     mu_fn = ld.mu * ld.Fn
     oscillation = None
-    if scene.oscillating:   # theory §11.2-11.3; the defaults leave the path as it was (normal_forces None)
+    if scene.oscillating:   # docs/theory.md §11.2-11.3; the defaults leave the path as it was (normal_forces None)
         oscillation = LoadOscillation(force_amplitude=tuple(ld.ft_amplitude * mu_fn * e_f),
                                       normal_amplitude=ld.fn_amplitude * ld.Fn, phase=ld.phase,
                                       cycles_per_period=ld.cycles_per_period,
@@ -34,21 +36,11 @@ def scene_path(scene: Scene) -> LoadPath:
 
 
 def scene_operator(scene: Scene, grid: Grid) -> HalfSpaceOperator:
-    """The scene's half-space operator on `grid` ([solver] threads and coupling)."""
-    return HalfSpaceOperator(grid, scene.material_pair, threads=scene.solver.threads,
+    """The scene's half-space operator on `grid` ([solver] threads and coupling); with viscoelastic bodies that of the
+    effective pair of its step time (cases.run.viscoelastic.step_pair)."""
+    pair = step_pair(scene) if scene.viscoelastic else scene.material_pair
+    return HalfSpaceOperator(grid, pair, threads=scene.solver.threads,
                              coupling={"auto": "auto", "on": True, "off": False}[scene.solver.coupling])
-
-
-def estimated(scene: Scene) -> bool:
-    """True when the scene's contact semi-axes are estimates (an ellipse's, the cylinder's, a file profile's)."""
-    return scene.shape in ("cylinder", "file") or (scene.shape == "ellipsoid" and len(set(scene.radii)) > 1)
-
-
-def contact_extent(scene: Scene) -> tuple[float, float]:
-    """Semi-axes (mm, along x and y) a grid must cover: the scene's, with a 10 % allowance where they are
-    estimates (`estimated`)."""
-    semi_x, semi_y = scene.semi_axes
-    return (1.1 * semi_x, 1.1 * semi_y) if estimated(scene) else (semi_x, semi_y)
 
 
 def scene_grid(scene: Scene, path: LoadPath | None = None) -> Grid:

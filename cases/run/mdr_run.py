@@ -38,7 +38,8 @@ def mdr_schedule(scene: Scene) -> LoadSchedule:
 
 def run_mdr(scene: Scene, *, progress=None) -> RunResult:
     """Run `scene` on the 1-D MDR model; the result is not written (its path is None). The sphere and the other
-    axisymmetric shapes (cone, power, flat_rounded: their MDR profiles g(s), theory §11.4). InputError for a scene
+    axisymmetric shapes (cone, power, flat_rounded: their MDR profiles g(s), docs/theory.md §11.4). InputError for a
+    scene
     the model cannot represent (an ellipse, coupled materials, load levels)."""
     quadric = scene.shape in ("sphere", "ellipsoid")
     rx, ry = scene.radii if quadric else (None, None)

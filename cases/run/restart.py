@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from rollcontact.bem.errors import InputError, SceneError
+from rollcontact.cases.arguments import arg
 from rollcontact.solver.rolling.stepping import StepState
 
 from rollcontact.cases.results.hdf5 import read_run_file
@@ -44,6 +45,20 @@ class RestartSource:
     def step(self) -> int:
         return self.state.step
 
+    def restore(self, memory):
+        """Set the element states of viscoelastic bodies (a solver.visco.ViscoMemory) to the restart step's, from its
+        stored snapshot (the states q and the total displacement u_x, u_y); InputError when they were not stored."""
+        steps = [int(s) for s in np.asarray(self.data.field_steps)]
+        i = steps.index(self.step)
+        fields = self.data.fields
+        missing = [name for name in memory.states() if name not in fields]
+        if missing:
+            raise InputError(f"--restart {self.path}: the viscoelastic element states {missing} were not stored, so "
+                             "the run cannot continue from them; run the scene anew")
+        states = {name: np.asarray(fields[name][i]) for name in memory.states()}
+        displacement = np.stack([fields["u_x"][i], fields["u_y"][i]])
+        memory.restore(states, self.state.pressure, self.state.traction, displacement)
+
     @property
     def period(self) -> int:
         """Oscillation period of the restart step (0: the loading phase)."""
@@ -59,19 +74,19 @@ class RestartSource:
 
 def read_source(path) -> RunResult:
     """The run file given to --restart; InputError naming the option if it is missing or not a run file."""
-    return read_run_file(path, InputError, f"--restart {path}")
+    return read_run_file(path, InputError, f"{arg('restart')} {path}")
 
 
 def load_restart(path, step: int | None = None) -> RestartSource:
     """The stored run at `step` (default: the last stored field step)."""
     data = read_source(path)
-    scene = Scene.from_toml_text(data.scene_toml, name=Path(path).stem)
+    scene = Scene.from_toml_text(data.scene_toml)          # with the name it was run under
     steps = [int(s) for s in np.asarray(data.field_steps)]
     if not steps:
-        raise InputError(f"--restart {path}: stores no fields, so no step can be continued from")
+        raise InputError(f"{arg('restart')} {path}: stores no fields, so no step can be continued from")
     step = steps[-1] if step is None else int(step)
     if step not in steps:
-        raise InputError(f"--step {step}: the fields of that step were not stored in {path}; "
+        raise InputError(f"{arg('step')} {step}: the fields of that step were not stored in {path}; "
                          f"stored steps: {steps}")
     i = steps.index(step)
     h = data.history
@@ -113,9 +128,11 @@ def continued_scene(source: RestartSource, overrides) -> Scene:
             same = False
         if not same:
             raise SceneError(
-                f"--set {unsafe[0]}: cannot change on --restart: the stored state (grid, fields, rigid shift) "
+                f"{arg('overrides')} {unsafe[0]}: cannot change on {arg('restart')}: the stored state (grid, fields, "
+                "rigid shift) "
                 f"and the path it has travelled depend on it; keys that may change on a restart: "
-                f"{', '.join(RESTART_SAFE_KEYS)}; to change {_key(unsafe[0])}, run the scene anew without --restart")
+                f"{', '.join(RESTART_SAFE_KEYS)}; to change {_key(unsafe[0])}, run the scene anew without "
+                f"{arg('restart')}")
     scene = source.scene.with_overrides(overrides)
     _check_path(source, scene)
     return scene
@@ -148,7 +165,7 @@ def _check_path(source: RestartSource, scene: Scene):
     least = max(source.period, 1) if rolls else source.scene.motion.periods
     if rolls and periods < least or not rolls and periods != least and scene.amplitude > 0:
         allowed = f"periods >= {least}" if rolls else f"periods = {least} (the stored run does not roll)"
-        raise SceneError(f"--set motion.periods = {periods}: the restart step {source.step} lies in period "
+        raise SceneError(f"{arg('overrides')} motion.periods = {periods}: the restart step {source.step} lies in period "
                          f"{source.period} of the stored run; allowed range is {allowed}")
     path = scene_path(scene)
     grid = scene_grid(scene, path)
@@ -157,5 +174,5 @@ def _check_path(source: RestartSource, scene: Scene):
     same_grid = (grid.nx, grid.ny) == (len(source.data.x), len(source.data.y)) and \
         np.allclose(grid.x, source.data.x) and np.allclose(grid.y, source.data.y)
     if n > path.n_steps or not same_grid or not np.allclose(path.centres[:n], stored, atol=1e-9):
-        raise SceneError(f"--restart: the continued scene does not pass through step {source.step} of "
-                         f"{source.path} on its grid; leave the --set overrides out or run the scene anew")
+        raise SceneError(f"{arg('restart')}: the continued scene does not pass through step {source.step} of "
+                         f"{source.path} on its grid; leave the {arg('overrides')} out or run the scene anew")

@@ -10,26 +10,15 @@ import math
 import numpy as np
 
 from rollcontact.bem.grid import Grid
-from rollcontact.cases.run.discretise import contact_extent
+from rollcontact.cases.scene.extent import rolling_frame_grid
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import linear_creep_forces
 
 
 def creep_grid(scene: Scene, travel: float = 0.0) -> Grid:
-    """Grid of the rolling frame over the contact (cases.run.discretise.contact_extent: 10 % allowance for
-    estimated semi-axes) plus the scene's margin (at least one element: the steady upwind difference needs a free
-    cell ahead); `travel` (mm) lengthens it ahead for the contact rolled from x = 0 to x = travel (the world-fixed
-    grid of a transient). The extent in the frame is the turned ellipse's, or the turned rectangle's for the
-    cylinder and a file profile, whose contacts are not elliptic."""
-    (sa, sb), (dx, dy) = contact_extent(scene), scene.spacing
-    t = math.radians(scene.rolling.direction)
-    c, s = abs(math.cos(t)), abs(math.sin(t))
-    if scene.shape in ("cylinder", "file"):
-        half_x, half_y = sa * c + sb * s, sa * s + sb * c
-    else:
-        half_x, half_y = math.hypot(sa * c, sb * s), math.hypot(sa * s, sb * c)
-    margin = max(scene.grid.margin, dx, dy)
-    return Grid.covering(-half_x - margin, travel + half_x + margin, -half_y - margin, half_y + margin, dx, dy)
+    """Grid of the rolling frame over the contact plus the scene's margin, lengthened ahead by `travel` (mm) for the
+    world-fixed grid of a transient (cases.scene.extent.rolling_frame_grid)."""
+    return rolling_frame_grid(scene, travel)
 
 
 def rolling_semi_axes(scene: Scene) -> tuple[float, float] | None:

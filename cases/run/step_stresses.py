@@ -30,7 +30,8 @@ import h5py
 import numpy as np
 
 from rollcontact.bem.subsurface import SubsurfaceStresses
-from rollcontact.cases.results.hdf5 import GZIP_LEVEL, replacing
+from rollcontact.cases.results.hdf5 import GZIP_LEVEL
+from rollcontact.cases.results.writing import new_hdf5, replacing, write_failed
 from rollcontact.cases.results.run_result import SUBSURFACE_NAMES
 from rollcontact.cases.run.stresses import create_group, grid_of, layer_fields, run_depths
 from rollcontact.cases.scene.scene import Scene
@@ -150,8 +151,8 @@ class StepStresses:
         if source_folder.resolve() != self.folder.resolve():
             other = source_folder / path.name
             if self._matches(other, key):
-                self.folder.mkdir(parents=True, exist_ok=True)
-                with replacing(path) as tmp:
+                self._make_folder()
+                with replacing(path, "subsurface step file") as tmp:
                     shutil.copyfile(other, tmp)
                 return True
         if step > self.restart.step:
@@ -165,13 +166,13 @@ class StepStresses:
                 if step not in steps:
                     return False
                 k = steps.index(step)
-                with self._step_file(path, step, key) as out:
+                with self._step_file(path, step, key) as (out, _):
                     for name in SUBSURFACE_NAMES:
                         for j in range(len(self.z)):
                             mask, chunk = g[name].id.read_direct_chunk((k, j, 0, 0))
                             out[name].id.write_direct_chunk((j, 0, 0), chunk, mask)
             return True
-        except (OSError, KeyError):
+        except (OSError, KeyError):     # the source cannot be read (a failed write is an OutputWriteError)
             return False
 
     def _compute(self, step, key, path, pressure, tau_x, tau_y):
@@ -182,7 +183,7 @@ class StepStresses:
         worst = 0.0
         self._op.set_tractions(pressure, tau_x, tau_y)
         computing = time.perf_counter() - start
-        with self._step_file(path, step, key) as out:
+        with self._step_file(path, step, key) as (out, check):
             for j, depth in enumerate(self.z):
                 t0 = time.perf_counter()
                 values = layer_fields(self._op, float(depth), self._layer)
@@ -190,20 +191,28 @@ class StepStresses:
                 for name, layer in values.items():
                     out[name][j] = layer
                 worst = max(worst, float(values["von_mises"].max()))
+                check()            # a failed write stops the step at once (OutputWriteError)
         self.seconds += computing
         if self.progress:
             self.progress(f"subsurface stresses of step {step} written ({len(self.z)} depths, max von Mises "
                           f"{worst:.4g} MPa, {time.perf_counter() - start:.2f} s)")
 
+    def _make_folder(self):
+        """The folder of the step files, beside the run's file (whose folder is not made again if it vanished)."""
+        try:
+            self.folder.mkdir(exist_ok=True)
+        except OSError as exc:
+            raise write_failed(self.folder, exc, "subsurface folder") from None
+
     @contextmanager
     def _step_file(self, path, step, key):
-        """The step file `path` written through a temporary file renamed into place at the end: its nine datasets by
-        name."""
-        path.parent.mkdir(parents=True, exist_ok=True)
+        """The step file `path` written through a temporary file renamed into place at the end: (its nine datasets
+        by name, check), check() raising OutputWriteError once a write failed (cases.results.writing.new_hdf5)."""
+        self._make_folder()
         ny, nx = self.grid.shape
-        with replacing(path) as tmp, h5py.File(tmp, "w") as h5:
+        with new_hdf5(path, "subsurface step file") as (h5, check):
             h5.attrs.update(step=step, nu=self.nu, key=key)
             h5.create_dataset("z", data=self.z).attrs["units"] = "mm"
             yield {name: h5.create_dataset(name, shape=(len(self.z), ny, nx), dtype=np.float64, chunks=(1, ny, nx),
                                            compression="gzip", compression_opts=GZIP_LEVEL)
-                   for name in SUBSURFACE_NAMES}
+                   for name in SUBSURFACE_NAMES}, check

@@ -1,5 +1,5 @@
 """Subsurface stresses of a stored run: computed from the stored tractions (bem.subsurface) and added to the run file
-as /subsurface (layout: cases.results.subsurface; README, "HDF5 layout").
+as /subsurface (layout: cases.results.subsurface; docs/hdf5_schema.md).
 
 Default depths: DEFAULT_DEPTH_COUNT depths from 0 to DEFAULT_DEPTH_EXTENT * a (a: the Hertz contact radius of the
 run's summary), z_k = extent a (k / (count - 1))^DEFAULT_DEPTH_GRADING: spacing 0.013 a under the surface, 0.06 a at
@@ -23,7 +23,9 @@ import numpy as np
 from rollcontact.bem.errors import InputError
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.subsurface import COMPONENTS, SubsurfaceStresses, invariants
-from rollcontact.cases.results.hdf5 import GZIP_LEVEL, replacing, wait_for_replaced
+from rollcontact.cases.arguments import arg
+from rollcontact.cases.results.hdf5 import GZIP_LEVEL
+from rollcontact.cases.results.writing import new_hdf5, wait_for_replaced
 from rollcontact.cases.results.lock import OutputLock
 from rollcontact.cases.results.run_result import SUBSURFACE_NAMES, UNITS
 from rollcontact.cases.scene.scene import Scene
@@ -37,31 +39,45 @@ def default_depths(a: float, count: int = DEFAULT_DEPTH_COUNT, extent: float = D
                    grading: float = DEFAULT_DEPTH_GRADING) -> np.ndarray:
     """The default depths (mm) for a contact radius a (mm): z_k = extent a (k/(count-1))^grading, k = 0..count-1."""
     if not (a > 0 and math.isfinite(a)):
-        raise InputError(f"contact radius a = {a!r} mm: must be > 0 to place the default depths; give --depths")
+        raise InputError(f"contact radius a = {a!r} mm: must be > 0 to place the default depths; give {arg('depths')}")
     k = np.arange(count) / (count - 1)
     return extent * a * k ** grading
 
 
 def parse_depths(text: str) -> np.ndarray:
-    """'z1,z2,...' (mm) -> sorted unique depths; InputError naming --depths for anything but finite values >= 0."""
+    """'z1,z2,...' (mm) -> the depths, checked (`check_depths`); InputError naming --depths for anything but finite
+    values >= 0 in increasing order."""
     try:
         values = [float(v) for v in str(text).split(",") if v.strip()]
     except ValueError:
-        raise InputError(f"--depths {text!r}: expected depths in mm separated by commas, e.g. 0,0.5,1.5") from None
-    if not values or not all(math.isfinite(v) and v >= 0 for v in values):
-        raise InputError(f"--depths {text!r}: each depth must be a finite number >= 0 (mm below the surface)")
-    return np.unique(np.array(values))
+        raise InputError(f"{arg('depths')} {text!r}: expected depths in mm separated by commas, e.g. 0,0.5,1.5") from None
+    return check_depths(values, text)
+
+
+def check_depths(depths, label=None) -> np.ndarray:
+    """The depths (mm) as a 1-D array: finite, >= 0, strictly increasing (none sorted or dropped unannounced);
+    InputError naming the depths (as `label`, default their value) otherwise."""
+    label = depths if label is None else label
+    try:
+        z = np.asarray(depths, dtype=float)
+    except (TypeError, ValueError):
+        z = np.zeros(0)
+    if z.ndim != 1 or not len(z) or not np.all(np.isfinite(z) & (z >= 0)):
+        raise InputError(f"{arg('depths')} {label!r}: each depth must be a finite number >= 0 (mm below the "
+                         "surface), at least one")
+    if np.any(np.diff(z) <= 0):
+        k = int(np.flatnonzero(np.diff(z) <= 0)[0])
+        raise InputError(f"{arg('depths')} {label!r}: depths must increase, each given once (mm below the surface); "
+                         f"{z[k + 1]:g} follows {z[k]:g}")
+    return z
 
 
 def run_depths(scene: Scene, a: float, depths=None) -> np.ndarray:
-    """The depths (mm) of a run's stresses: `depths` checked (InputError naming them), or, when None, the default
-    depths of the contact radius a (mm; the run summary's) or, when a is not > 0, of the scene's."""
+    """The depths (mm) of a run's stresses: `depths` checked (`check_depths`), or, when None, the default depths of
+    the contact radius a (mm; the run summary's) or, when a is not > 0, of the scene's."""
     if depths is None:
         return default_depths(a if a > 0 else scene.contact_radius)
-    z = np.asarray(depths, dtype=float)
-    if z.ndim != 1 or not len(z) or not np.all(np.isfinite(z) & (z >= 0)):
-        raise InputError(f"depths {depths!r}: must be finite values >= 0 mm")
-    return z
+    return check_depths(depths)
 
 
 def grid_of(x, y) -> Grid:
@@ -80,12 +96,19 @@ def _selected_steps(stored, steps) -> list[int]:
                          "there are no tractions to compute stresses from")
     if steps is None:
         return stored[-1:]
-    if steps == "all":
+    if isinstance(steps, str):
+        if steps != "all":
+            raise InputError(f"{arg('steps')} {steps!r}: expected stored steps, 'all' or None (the last stored step)")
         return stored
-    chosen = sorted({int(s) for s in steps})
+    if isinstance(steps, (int, np.integer)):
+        steps = [steps]
+    try:
+        chosen = sorted({int(s) for s in steps})
+    except (TypeError, ValueError):
+        raise InputError(f"{arg('steps')} {steps!r}: expected stored steps (integers), 'all' or None") from None
     missing = [s for s in chosen if s not in stored]
     if missing:
-        raise InputError(f"--step {missing[0]}: not a stored step; stored steps: {_compact(stored)}")
+        raise InputError(f"{arg('step')} {missing[0]}: not a stored step; stored steps: {_compact(stored)}")
     return chosen
 
 
@@ -106,7 +129,12 @@ def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 
     if not h5py.is_hdf5(path):
         raise InputError(f"{path}: not an HDF5 file; expected a run file written by rollcontact run")
     with OutputLock(path, label=str(path)):
-        with h5py.File(path, "r") as src:
+        try:
+            src = h5py.File(path, "r")
+        except OSError:
+            raise InputError(f"{path}: cannot be read as HDF5 (a truncated or damaged file); expected a run file "
+                             "written by rollcontact run") from None
+        with src:
             missing = [k for k in ("fields/p", "fields/tau_x", "fields/tau_y", "fields/step", "grid/x", "grid/y")
                        if k not in src] + [k for k in ("scene",) if k not in src.attrs]
             if missing:
@@ -117,20 +145,53 @@ def add_subsurface(path, steps=None, depths=None, progress=None, threads: int = 
             grid = grid_of(src["grid/x"][()], src["grid/y"][()])
             a = float(src["summary"].attrs.get("a", np.nan)) if "summary" in src else np.nan
             z = run_depths(scene, a, depths)
-            with replacing(path) as tmp:
-                with h5py.File(tmp, "w") as dst:
+            try:
+                with new_hdf5(path, "run file") as (dst, check):
                     for key, value in src.attrs.items():
                         dst.attrs[key] = value
                     for key in src:
                         if key != "subsurface":
                             src.copy(src[key], dst, name=key)
-                    seconds = _fill(dst, src, grid, nu, chosen, z, depths is None, progress, threads)
+                    check()
+                    seconds = _fill(dst, src, grid, nu, chosen, z, depths is None, progress, threads, check)
+            except OSError:      # reading the run file failed part-way (a failed write is an OutputWriteError)
+                raise InputError(f"{path}: cannot be read as HDF5 (a truncated or damaged file); expected a run "
+                                 "file written by rollcontact run") from None
     wait_for_replaced()
     return {"steps": chosen, "z": z, "seconds": seconds}
 
 
-def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
-    """Create /subsurface in `dst` and fill it depth by depth, step by step (tractions read from `src`)."""
+def subsurface_in_memory(result, steps=None, depths=None, progress=None, threads: int = 1):
+    """The subsurface stresses of a RunResult held in memory (no file): the same values `add_subsurface` stores, for
+    `steps` (stored steps, 'all', or None for the last) at `depths` (mm; None: the default depths of the run's
+    contact radius), as a cases.results.subsurface.Subsurface of arrays (snapshots, nz, ny, nx) in MPa."""
+    from rollcontact.cases.results.subsurface import Subsurface
+    chosen = _selected_steps(result.field_steps, steps)
+    scene = result.scene
+    grid = grid_of(result.x, result.y)
+    a = result.summary.get("a")
+    z = run_depths(scene, float(a) if a is not None else np.nan, depths)
+    op = SubsurfaceStresses(grid, scene.materials.nu2, threads=threads)
+    stored = [int(s) for s in np.asarray(result.field_steps)]
+    arrays = {name: np.empty((len(chosen), len(z)) + grid.shape) for name in SUBSURFACE_NAMES}
+    layer = np.empty((6,) + grid.shape)
+    t0 = time.perf_counter()
+    for i, step in enumerate(chosen):
+        k = stored.index(step)
+        op.set_tractions(*(np.asarray(result.fields[n])[k] for n in ("p", "tau_x", "tau_y")))
+        for j, depth in enumerate(z):
+            for name, v in layer_fields(op, float(depth), layer).items():
+                arrays[name][i, j] = v
+        if progress:
+            progress(f"subsurface stresses of step {step}: {len(z)} depths")
+    return Subsurface(None, z=z, steps=chosen, x=np.asarray(result.x), y=np.asarray(result.y),
+                      nu=float(scene.materials.nu2), depths="default" if depths is None else "given", arrays=arrays,
+                      seconds=time.perf_counter() - t0, computed=chosen)
+
+
+def _fill(dst, src, grid, nu, steps, z, default, progress, threads, check) -> float:
+    """Create /subsurface in `dst` and fill it depth by depth, step by step (tractions read from `src`); check()
+    after each depth stops at the first failed write."""
     out = create_group(dst, nu, z, steps, default, grid.shape)
     stored = [int(s) for s in src["fields/step"][()]]
     op = SubsurfaceStresses(grid, nu, threads=threads)
@@ -146,6 +207,7 @@ def _fill(dst, src, grid, nu, steps, z, default, progress, threads) -> float:
             seconds += time.perf_counter() - t0
             for name, v in values.items():
                 out[name][i, j] = v
+        check()
         if progress:
             progress(f"subsurface stresses: depth {j + 1}/{len(z)} (z = {float(depth):.4g} mm), {len(steps)} "
                      f"step(s), max von Mises {out['von_mises'][:, j].max():.4g} MPa")

@@ -11,6 +11,7 @@ import numpy as np
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.run.friction_outputs import friction_lines, friction_summary
+from rollcontact.cases.run.viscoelastic import viscous_per_period
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.shakedown import SETTLED_STATES, classify, cyclic_slip
 from rollcontact.solver.rolling.stepping import LoadPath
@@ -21,7 +22,7 @@ SIDEWAYS_REPORTED = 1e-9
 
 
 def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Grid, wall: float) -> dict:
-    """Run summary: normalisations of seed Eq. 9 with the consistent constants (theory §8.2, P3)."""
+    """Run summary: normalisations of seed Eq. 9 with the consistent constants (docs/theory.md §8.2, P3)."""
     pair = scene.material_pair
     hertz = scene.normal_reference        # Hertz (sphere, ellipsoid's equivalent sphere) or the shape's MDR
     n_done = len(history["U_x"])
@@ -47,6 +48,10 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
     if n_done:
         summary["U_perp"] = float(U_perp[-1])
     summary["dissipation_per_period"] = dissipation_per_period(path.period, history)
+    if scene.viscoelastic and n_done:     # docs/viscoelastic.md; cases.run.viscoelastic
+        xc = float(history["pressure_centroid_x"][-1])
+        summary.update(pressure_centroid_x=xc, rolling_resistance_moment=float(history["Fn"][-1]) * xc,
+                       viscous_dissipation_per_period=viscous_per_period(path.period, history))
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=path.step_time)
     if scene.friction_on:
@@ -91,6 +96,9 @@ def format_summary(result: RunResult) -> str:
     """Short human summary printed by `rollcontact run`."""
     d = result
     s, h = d.summary, d.history
+    if "n_patches" in s or (d.status == "failed" and d.scene.wheelrail_on):
+        from rollcontact.cases.run.wheelrail_run import format_wheelrail
+        return format_wheelrail(d)
     if s.get("state") in ("steady", "transient", "failed") and "xi" in s:
         return _format_creep(d)
     lines = []
@@ -135,11 +143,23 @@ def format_summary(result: RunResult) -> str:
     if s.get("dissipation_per_period") is not None and d.scene.oscillating:
         lines.append(f"frictional work of the last period: {s['dissipation_per_period']:.6g} N mm")
     lines += friction_lines(s)
+    lines += _visco_lines(s)
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
     if d.path is not None:
         lines.append(f"results written to {Path(d.path).resolve()}")
     return "\n".join(lines)
+
+
+def _creep_work(s: dict, h: dict) -> str:
+    """What the tangential model did: the exact solver's sweeps (steady) or products (last transient step), or the
+    fast model's one pass over the strips."""
+    model = s.get("fidelity_used", "bem")
+    if model in ("fastsim", "fastrip"):
+        bound = f", bound '{s['traction_bound']}'" if "traction_bound" in s else ""
+        return f"{'FASTSIM' if model == 'fastsim' else 'FaStrip'} (one pass over the strips{bound})"
+    return (f"{int(h['tangential_iterations'][-1])} "
+            f"{'sweeps' if s.get('mode') == 'steady' else 'products in the last step'}")
 
 
 def _format_creep(d: RunResult) -> str:
@@ -150,9 +170,7 @@ def _format_creep(d: RunResult) -> str:
     if d.status == "complete":
         lines.append(f"contact area {h['contact_area'][-1]:.5g} mm^2 (stick {100 * s['stick_fraction']:.1f} %), "
                      f"max pressure {s['p0']:.5g} MPa, approach {h['approach'][-1]:.6g} mm, grid {s['nx']} x "
-                     f"{s['ny']}, {int(h['tangential_iterations'][-1])} "
-                     f"{'sweeps' if s.get('mode') == 'steady' else 'products in the last step'}, wall time "
-                     f"{d.wall_time:.2f} s")
+                     f"{s['ny']}, {_creep_work(s, h)}, wall time {d.wall_time:.2f} s")
         lines.append(f"forces on the rolling sphere (Kalker's convention, opposing the creepages): F_x = "
                      f"{s['F_x']:.6g} N, F_y = {s['F_y']:.6g} N, M_z = {s['M_z']:.6g} N mm; |F|/(mu Fn) = "
                      f"{math.hypot(s['F_x'], s['F_y']) / s['mu_Fn']:.4f}; linear theory F_x = {s['F_x_linear']:.6g} N, "
@@ -167,6 +185,20 @@ def _format_creep(d: RunResult) -> str:
         lines += friction_lines(s)
     else:
         lines.append(f"status: {d.status}: {d.error}")
+    lines += _visco_lines(s)
     if d.path is not None:
         lines.append(f"results written to {Path(d.path).resolve()}")
     return "\n".join(lines)
+
+
+def _visco_lines(s: dict) -> list:
+    """The viscoelastic outputs of a summary (cases.run.viscoelastic), one line; none for an elastic run."""
+    if s.get("pressure_centroid_x") is None:
+        return []
+    line = (f"viscoelastic: pressure centroid {s['pressure_centroid_x']:.5g} mm ahead of the lowest point, rolling "
+            f"resistance moment {s['rolling_resistance_moment']:.5g} N mm")
+    if s.get("viscous_dissipation_per_period") is not None:
+        line += f", viscous work of the last period {s['viscous_dissipation_per_period']:.5g} N mm"
+    if s.get("viscous_power") is not None:
+        line += f", viscous power {s['viscous_power']:.5g} W"
+    return [line]

@@ -1,5 +1,6 @@
 """The `[geometry]` of a scene: which shape it names, the keys each shape takes, its profile for the solvers and
-its closed-form normal and tangential references (theory.md §7.1-7.2 for the sphere, §11.4 by the MDR for the
+its closed-form normal and tangential references (docs/theory.md §7.1-7.2 for the sphere, docs/theory.md §11.4 by the
+MDR for the
 other axisymmetric shapes). Units mm, N, MPa, degrees.
 
     shape          keys        profile h (r: distance from the centre)

@@ -55,6 +55,8 @@ def read_profile_file(path: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, st
             x, y, h = _gridded(rows, path)
         else:
             raise SceneError(f"{key} = {path!r}: allowed formats are .npz (x, y, h), .npy or .csv (rows x, y, h)")
+    except SceneError:
+        raise
     except (OSError, ValueError, KeyError) as exc:
         raise SceneError(f"{key} = {path!r}: not a profile file ({exc})") from None
     if x.ndim != 1 or y.ndim != 1 or h.shape != (y.size, x.size) or x.size < 4 or y.size < 4:
@@ -70,9 +72,13 @@ def read_profile_file(path: str) -> tuple[np.ndarray, np.ndarray, np.ndarray, st
 
 
 def _read_csv(p: Path) -> np.ndarray:
+    """The rows of a .csv profile (a header line skipped); SceneError for a file without rows (numpy would only
+    warn)."""
     with open(p) as f:
-        first = f.readline()
-    skip = 0 if _numeric(first) else 1
+        lines = [ln for ln in f.read().splitlines() if ln.strip()]
+    skip = 0 if lines and _numeric(lines[0]) else 1
+    if len(lines) <= skip:
+        raise SceneError(f"[geometry] path = {str(p)!r}: holds no rows of x, y, h (an empty file, or a header only)")
     return np.loadtxt(p, delimiter=",", skiprows=skip, ndmin=2)
 
 

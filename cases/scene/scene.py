@@ -2,7 +2,8 @@
 
 Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contract, see README):
 
-    [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate)
+    [materials] E1, nu1 (sphere; E1 = inf for a rigid sphere), E2, nu2 (substrate); visco1, visco2 ("none", "sls"),
+                E1_relaxed, E2_relaxed, tau1, tau2 (s): Standard Linear Solid bodies, E<i> their glassy modulus
     [geometry]  R, or Rx and Ry (radii of the profile h = x^2/2Rx + y^2/2Ry), or shape with its keys:
                 cone (slope), power (n, R), flat_rounded (b, R) (cases.scene.geometry)
     [load]      Fn; mu; ft (= Ft/(mu Fn)) or Ft; load_angle (direction of Ft from the x axis);
@@ -15,13 +16,16 @@ Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contr
                 spin, in place of [motion] and a tangential load (Kalker's convention, solver.creep)
     [friction]  law and its keys: a friction law in place of load.mu (cases.scene.friction, docs/friction.md)
     [thermal]   conductivity1/2, density1/2, heat_capacity1/2, T_bulk1/2: surface temperatures ([rolling] scenes)
+    [wheelrail] a wheel on its rail from two profile files, in place of [geometry], [motion], [rolling] and the loads of
+                [load] (cases.scene.wheelrail, docs/wheelrail.md)
     [grid]      dx, dy, margin
-    [solver]    tol, max_iter, fidelity ("bem" or "mdr"), threads, coupling, shakedown_tol
+    [solver]    tol, max_iter, fidelity ("bem", "mdr", "fastsim", "fastrip" or "auto"), accuracy (with "auto"),
+                traction_bound (of "fastsim", "fastrip"), threads, coupling, shakedown_tol
     [output]    fields ("reversals", "all", "last", "none")
 
 A key left out takes its default (the field specs of `cases.scene.keys`): the seed paper's materials, Fn, mu
 and rolling angle, but no tangential load and no motion; only [geometry] is required. So a scene file states
-only what its scene needs (the README's scene-key table lists the defaults). Unknown keys, wrong types and
+only what its scene needs (docs/scene_reference.md lists the defaults). Unknown keys, wrong types and
 out-of-range values raise `SceneError` naming the key, the value and the allowed range; so do, for a new
 run, a grid coarser than MIN_ELEMENTS_PER_RADIUS elements per Hertz semi-axis and a path of more than
 MAX_STEPS steps.
@@ -34,34 +38,39 @@ from __future__ import annotations
 from dataclasses import dataclass, field, fields, replace
 import math
 from pathlib import Path
+import re
 import tomllib
 from importlib import resources
 
+
 from rollcontact.bem.errors import SceneError
-from rollcontact.bem.materials import MaterialPair
+from rollcontact.bem.materials import Material, MaterialPair
+from rollcontact.cases.arguments import arg
 from rollcontact.cases.scene.geometry import (
-    SHAPE_KEYS, check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
+    check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
 from rollcontact.cases.scene.friction import check_friction, friction_on, thermal_on
 from rollcontact.cases.scene.keys import (
     SECTIONS, Friction, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, Thermal,
-    check_key)
+    WheelRail, check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
+from rollcontact.cases.scene.checks import SceneChecks
+from rollcontact.solver.visco.sls import StandardLinearSolid
+from rollcontact.cases.scene.overrides import (  # noqa: F401  (ALTERNATIVE_KEYS, SPELLINGS, other_spellings re-exported)
+    ALTERNATIVE_KEYS, SPELLINGS, assignments_of, other_spellings, toml_value, with_overrides)
 
-#: keys of one section that are alternative spellings of one quantity: a scene gives one of each pair
-ALTERNATIVE_KEYS = (("ft", "Ft"), ("w", "W"), ("R", "Rx"), ("R", "Ry"), ("xi", "Fx"), ("eta", "Fy"))
 
-
-def other_spellings(key: str) -> set:
-    """The alternative spellings of section.key: 'load.ft' -> {'load.Ft'}, 'geometry.R' -> {'geometry.Rx',
-    'geometry.Ry'}; empty for a key without one."""
-    sec, _, name = key.partition(".")
-    return {f"{sec}.{b if name == a else a}" for a, b in ALTERNATIVE_KEYS if name in (a, b)}
+def stored_name(toml_text: str) -> str | None:
+    """The scene name a stored scene's first line states (`Scene.to_toml`: "# rollcontact scene 'NAME' (units: ..."),
+    or None."""
+    first = toml_text.split("\n", 1)[0] if isinstance(toml_text, str) else ""
+    match = re.match(r"# rollcontact scene '(.*)' \(units:", first)
+    return match.group(1) if match else None
 
 
 @dataclass
-class Scene(SceneLimits):
+class Scene(SceneChecks, SceneLimits):
     """A complete, validated scene. Build it with `Scene.from_toml`, `Scene.from_dict` or `default_scene`."""
 
     materials: Materials = field(default_factory=Materials)
@@ -71,6 +80,7 @@ class Scene(SceneLimits):
     rolling: Rolling = field(default_factory=Rolling)
     friction: Friction = field(default_factory=Friction)
     thermal: Thermal = field(default_factory=Thermal)
+    wheelrail: WheelRail = field(default_factory=WheelRail)
     grid: GridSpec = field(default_factory=GridSpec)
     solver: SolverSpec = field(default_factory=SolverSpec)
     output: Output = field(default_factory=Output)
@@ -101,52 +111,82 @@ class Scene(SceneLimits):
             kwargs = {k: check_key(sec, names[k], v) for k, v in values.items()}
             parts[sec] = klass(**kwargs)
         scene = cls(**parts, name=name)
+        if scene.viscoelastic and ("wheelrail" in data or scene.wheelrail_on):
+            raise SceneError("[materials] visco1 / visco2 = 'sls' with [wheelrail]: viscoelastic bodies are not "
+                             "supported in wheel-rail scenes; remove the viscoelastic keys or the [wheelrail] section")
+        scene._check_friction_models(data)
+        if "wheelrail" in data or scene.wheelrail_on:
+            return scene._wheelrail_checked(data, run_limits)
         scene._check_rolling(data)
         check_friction(scene, data)      # a friction law puts its static coefficient in load.mu
+        scene._check_fidelity()
         scene._check_consistency()
+        scene._check_visco()
         if scene.shape == "file" and run_limits:   # a stored scene is readable without its profile file
             scene.geometry, filled = checked_file_geometry(scene.geometry)
             scene.derived = frozenset({"geometry.sha256"} if filled else ())
+        if scene.shape != "file" or run_limits:    # a file profile's size needs its file
+            scene._check_finite()
         scene._resolve_resolution()
         if scene.shape == "file" and run_limits:
             check_file_coverage(scene)
         if run_limits:
             scene._check_resolution()
             scene._check_steps()
+            scene._check_load_cycles()
+            scene._check_rolling_run()
         return scene
 
     @classmethod
     def from_toml(cls, path) -> "Scene":
         path = Path(path)
         try:
-            text = path.read_text()
+            raw = path.read_bytes()
         except OSError as exc:
             raise SceneError(f"scene file {path}: {exc.strerror}") from None
+        if raw.startswith(b"\x89HDF\r\n\x1a\n"):
+            raise SceneError(f"scene file {path}: is an HDF5 file (a run file?), not a scene (TOML text); to continue "
+                             f"a run give it to {arg('restart')}, to read it use rollcontact.read_run or rollcontact plot")
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise SceneError(f"scene file {path}: not a text file (byte {exc.start} is not UTF-8); expected a scene "
+                             "in TOML") from None
         return cls.from_toml_text(text, name=path.stem, base=path.parent)
 
     @classmethod
-    def from_toml_text(cls, text: str, name: str = "scene", run_limits: bool = True, base=None) -> "Scene":
-        """base: the folder a relative [geometry] path is relative to (the scene file's; default the current one)."""
+    def from_toml_text(cls, text: str, name: str | None = None, run_limits: bool = True, base=None) -> "Scene":
+        """The scene of a TOML text. name: its name (default: the name a stored scene states in its first line,
+        `to_toml`, else 'scene'); base: the folder a relative [geometry] path is relative to (the scene file's;
+        default the current one)."""
+        if name is None:
+            name = stored_name(text) or "scene"
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise SceneError(f"scene {name}: not valid TOML ({exc})") from None
-        geometry = data.get("geometry")
-        if base is not None and isinstance(geometry, dict) and isinstance(geometry.get("path"), str):
-            geometry["path"] = str(Path(base) / Path(geometry["path"]).expanduser())
+        for sec, key in (("geometry", "path"), ("wheelrail", "wheel_profile"), ("wheelrail", "rail_profile")):
+            table = data.get(sec)
+            if base is not None and isinstance(table, dict) and isinstance(table.get(key), str):
+                table[key] = str(Path(base) / Path(table[key]).expanduser())
         return cls.from_dict(data, name=name, run_limits=run_limits)
 
     def to_dict(self, include_none: bool = False) -> dict:
-        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion];
-        [friction] and [thermal] only when given (and then no load.mu: the law gives it)."""
+        """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]; a
+        [wheelrail] scene has no [motion] or [geometry] and only load.mu and grid.dx, dy; [friction] and [thermal]
+        only when given (and then no load.mu: the law gives it)."""
         out = {}
+        skip = ("geometry", "motion") + (() if self.rolling_on else ("rolling",)) if self.wheelrail_on else \
+            ("wheelrail", "motion" if self.rolling_on else "rolling")
         for sec in SECTIONS:
-            if sec == ("motion" if self.rolling_on else "rolling"):
+            if sec in skip:
                 continue
             if (sec == "friction" and not self.friction_on) or (sec == "thermal" and not self.thermal_on):
                 continue
             obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
+            if self.wheelrail_on and sec in ("load", "grid", "rolling"):
+                vals = {k: v for k, v in vals.items() if k in ("mu", "dx", "dy", "mode", "distance", "step", "initial")}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
         if self.friction_on:
             out["load"].pop("mu", None)
@@ -157,52 +197,26 @@ class Scene(SceneLimits):
         lines = [f"# rollcontact scene '{self.name}' (units: mm, N, MPa, degrees)"]
         for sec, vals in self.to_dict().items():
             lines.append(f"\n[{sec}]")
-            lines += [f"{k} = {_toml_value(v)}" for k, v in vals.items()]
+            lines += [f"{k} = {toml_value(v)}" for k, v in vals.items()]
         return "\n".join(lines) + "\n"
 
-    @staticmethod
-    def assignments(overrides) -> list[str]:
-        """`section.key=value` strings (as `--set` takes them) from {"section.key": value}; a list of such strings
-        passes through. Values are written as TOML, so that they parse back to the same value."""
-        if isinstance(overrides, dict):
-            return [f"{key}={_toml_value(value)}" for key, value in overrides.items()]
-        if isinstance(overrides, str):
-            return [overrides]
-        return list(overrides)
+    @property
+    def wheelrail_on(self) -> bool:
+        """True for a wheel-rail scene ([wheelrail], cases.scene.wheelrail)."""
+        return self.wheelrail != WheelRail()
 
-    def with_overrides(self, assignments) -> "Scene":
-        """A new scene with overrides applied: `section.key=value` strings (values parsed as TOML, else as strings),
-        or a dict {"section.key": value}."""
-        assignments = self.assignments(assignments)
-        data = self.to_dict()
-        for key in self.derived:  # re-derived from the overridden scene unless set explicitly
-            sec, name = key.split(".")
-            data.get(sec, {}).pop(name, None)    # [motion] is left out of a rolling scene's dict
-        given = {}  # section.key -> the --set item that gave it
-        for item in assignments:
-            if "=" not in item or "." not in item.split("=", 1)[0]:
-                raise SceneError(f"--set {item!r}: expected section.key=value, e.g. load.ft=0.5")
-            key, raw = item.split("=", 1)
-            sec, name = key.strip().split(".", 1)
-            if sec not in SECTIONS:
-                raise SceneError(f"--set {item!r}: unknown section {sec!r}; allowed: {list(SECTIONS)}")
-            value = _parse_value(raw.strip())
-            section = data.setdefault(sec, {})
-            for other in sorted(other_spellings(f"{sec}.{name}")):
-                if other in given:
-                    raise SceneError(f"--set {given[other]!r} and --set {item!r}: give either {other} or "
-                                     f"{sec}.{name}, not both")
-                section.pop(other.partition(".")[2], None)
-            section[name] = value
-            given[f"{sec}.{name}"] = item
-        if not self.friction_on and any(key.startswith("friction.") for key in given) and "load.mu" not in given:
-            data["load"].pop("mu", None)   # a law set from the command line takes the place of load.mu
-        if "geometry.shape" in given:  # a new shape: the old shape's keys that it does not take are dropped
-            keep = SHAPE_KEYS.get(data["geometry"]["shape"], ())
-            for name in list(data["geometry"]):
-                if name != "shape" and name not in keep and f"geometry.{name}" not in given:
-                    del data["geometry"][name]
-        return Scene.from_dict(data, name=self.name)
+    def _wheelrail_checked(self, data: dict, run_limits: bool) -> "Scene":
+        """The checks of a [wheelrail] scene (cases.scene.wheelrail), its files' checksums and default grid (not the
+        grid's least resolution: a flange root's contact is narrow by nature; the run reports each patch's cells)."""
+        from rollcontact.cases.scene import wheelrail
+        wheelrail.check_sections(data)
+        wheelrail.check_keys(self)
+        if run_limits:
+            self.wheelrail, filled = wheelrail.checked_files(self.wheelrail)
+            self.derived = frozenset(filled)
+            self._resolve_resolution()
+            wheelrail.check_coverage(self)
+        return self
 
     @property
     def friction_on(self) -> bool:
@@ -237,106 +251,67 @@ class Scene(SceneLimits):
         (sa, sb), t = self.semi_axes, math.radians(self.rolling.direction)
         return math.hypot(sa * math.cos(t), sb * math.sin(t))
 
-    def _check_rolling(self, data: dict):
-        """A [rolling] scene has no [motion], no tangential load and the BEM model."""
-        if not self.rolling_on:
-            if set(data.get("rolling", {})) - {"mode"}:
-                raise SceneError("[rolling] mode = 'none' with other [rolling] keys: set mode = 'steady' to roll "
-                                 "with creepages, or leave the [rolling] section out")
-            return
-        if "motion" in data:
-            raise SceneError("[rolling] and [motion] exclude each other: a [rolling] scene rolls on steadily with "
-                             "creepages xi, eta, phi; remove the [motion] section (oscillating rolling)")
-        ld = self.load
-        for key, value in (("ft", ld.ft), ("Ft", ld.Ft)):
-            if value is not None:
-                raise SceneError(f"[load] {key} = {value!r} with [rolling]: the tangential force of a rolling "
-                                 "scene follows from its creepages [rolling] xi, eta, phi; remove load." + key)
-        if ld.levels:
-            raise SceneError("[load] levels with [rolling]: a rolling scene has no tangential load path; remove "
-                             "load.levels")
-        ro = self.rolling
-        for creep, force in (("xi", "Fx"), ("eta", "Fy")):
-            if getattr(ro, creep) is not None and getattr(ro, force) is not None:
-                raise SceneError(f"[rolling] give either {creep} (creepage) or {force} (N), not both")
-        if (ro.Fx is None) != (ro.Fy is None):
-            raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
-                             "give both, or the creepages xi and eta")
-        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", "")):
-            if getattr(ro, key) is not None and ro.mode != "transient":
-                raise SceneError(f"[rolling] {key} = {getattr(ro, key)!r}{unit} with mode = {ro.mode!r}: {key} "
-                                 "applies to mode = 'transient' only")
-        if ro.step is not None:
-            half = self.rolling_half_length
-            if ro.step > half:
-                raise SceneError(f"[rolling] step = {ro.step!r} mm: allowed range is 0 < step <= {half:.6g} mm (the "
-                                 "contact's half-length a along the rolling direction; a longer step skips material)")
-            distance = ro.distance if ro.distance is not None else 8.0 * half
-            if distance / ro.step > MAX_STEPS:
-                raise SceneError(f"[rolling] distance / step = {distance:.6g} / {ro.step!r} mm: more than "
-                                 f"{MAX_STEPS} steps; use a larger step or a shorter distance")
-        if self.solver.fidelity != "bem":
-            raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with [rolling]: creep rolling needs the "
-                             "boundary elements; allowed value is 'bem'")
+    @property
+    def traction_bound(self) -> str:
+        """The fast models' traction bound ([solver] traction_bound; 'scene' when left out)."""
+        return self.solver.traction_bound or "scene"
 
-    def _check_consistency(self):
-        ld, mo = self.load, self.motion
-        resolve_shape(self.geometry)
-        if ld.ft is not None and ld.Ft is not None:
-            raise SceneError("[load] give either ft (= Ft/(mu Fn)) or Ft (N), not both")
-        if ld.Ft is not None and ld.Ft > ld.mu * ld.Fn * (1 + 1e-12):
-            raise SceneError(f"[load] Ft = {ld.Ft} N exceeds mu*Fn = {ld.mu * ld.Fn:.6g} N: gross sliding, "
-                             "no static state exists (allowed range 0 <= Ft <= mu*Fn)")
-        if mo.w is not None and mo.W is not None:
-            raise SceneError("[motion] give either w (= W/a) or W (mm), not both")
-        self._check_oscillation()
+    @staticmethod
+    def assignments(overrides) -> list[str]:
+        """`section.key=value` strings (as `--set` takes them) from {"section.key": value} (cases.scene.overrides)."""
+        return assignments_of(overrides)
+
+    def with_overrides(self, assignments, replaces=()) -> "Scene":
+        """A new scene with overrides applied: `section.key=value` strings, or a dict {"section.key": value} (a text
+        value read as --set reads it). An override in the other spelling of a quantity the scene gives (load.Ft where
+        it gives load.ft, motion.W for motion.w, forces for creepages) is refused unless its key is in `replaces` (a
+        limit search sets the load.ft or motion.w it searches). SceneError names the key (cases.scene.overrides)."""
+        return with_overrides(self, assignments, replaces)
 
     @property
     def oscillating(self) -> bool:
         """True when a load oscillates within each period (load.ft_amplitude or load.fn_amplitude > 0)."""
         return self.load.ft_amplitude > 0 or self.load.fn_amplitude > 0
 
-    def _check_oscillation(self):
-        """Refuse a load schedule that lifts the sphere off or slides (theory §11.2-11.3), before any work.
-
-        The schedule f_t = ft + A sin(psi), Fn = Fn (1 + B sin(psi)) (A = ft_amplitude, B = fn_amplitude) is
-        checked over the whole cycle, not only at the steps: |Ft|/(mu Fn) = |ft + A s|/(1 + B s) with s = sin psi
-        in [-1, 1] is monotone in s on either side of its zero, so its maximum is at s = +1 or s = -1, and
-        |Ft| < mu Fn holds at every phase iff |ft + A| < 1 + B and |ft - A| < 1 - B, i.e. (ft, A >= 0)
-        ft + B - 1 < A < min(1 + B - ft, 1 - B + ft).
-        """
-        ld = self.load
-        if not self.oscillating:
-            return
-        if ld.levels:
-            raise SceneError(f"[load] levels = {ld.levels!r} cannot be combined with oscillating loads "
-                             "(ft_amplitude, fn_amplitude): give one or the other")
-        if ld.fn_amplitude > 0 and self.shape not in ("sphere", "ellipsoid"):
-            raise SceneError(f"[load] fn_amplitude = {ld.fn_amplitude!r} with [geometry] shape = {self.shape!r}: an "
-                             "oscillating normal load is supported for shape = 'sphere' or 'ellipsoid' only (the grid "
-                             "is sized by Hertz's a ~ Fn^(1/3) at the largest Fn); set fn_amplitude = 0")
-        A, B, ft = ld.ft_amplitude, ld.fn_amplitude, self.f_t
-        use = max(abs(ft + A) / (1.0 + B), abs(ft - A) / (1.0 - B))
-        if use >= 1.0:
-            lower, upper = ft + B - 1.0, min(1.0 + B - ft, 1.0 - B + ft)
-            allowed = (f"ft_amplitude < {upper:.6g}" if lower < 0 else
-                       f"{lower:.6g} < ft_amplitude < {upper:.6g}" if lower < upper else
-                       "none: lower load.ft below 1")
-            raise SceneError(
-                f"[load] ft_amplitude = {A!r} with ft = {ft:.6g}, fn_amplitude = {B!r}: |Ft| reaches {use:.4g} "
-                f"mu Fn during the cycle (gross sliding; at the smallest Fn, Fn (1 - fn_amplitude), when ft is "
-                f"large); allowed range is {allowed} at this ft and fn_amplitude (|Ft| < mu Fn at every phase)")
-
     # --- derived quantities ----------------------------------------------------------------------
     @property
-    def material_pair(self) -> MaterialPair:
+    def viscoelastic(self) -> bool:
+        """True when a body is a Standard Linear Solid (materials.visco1 or visco2 = 'sls')."""
+        return "sls" in (self.materials.visco1, self.materials.visco2)
+
+    @property
+    def bodies(self) -> tuple:
+        """(sphere, substrate): each a bem Material, or a solver.visco StandardLinearSolid for visco<i> = 'sls'."""
         m = self.materials
-        return MaterialPair.from_moduli(m.E1, m.nu1, m.E2, m.nu2)
+        out = []
+        for i in (1, 2):
+            E, nu = getattr(m, f"E{i}"), getattr(m, f"nu{i}")
+            if getattr(m, f"visco{i}") == "sls":
+                out.append(StandardLinearSolid(E, getattr(m, f"E{i}_relaxed"), getattr(m, f"tau{i}"), nu))
+            else:
+                out.append(Material(E, nu))
+        return tuple(out)
+
+    @property
+    def sls_bodies(self) -> dict:
+        """{body index: StandardLinearSolid} of the viscoelastic bodies (empty for an elastic scene)."""
+        return {i: b for i, b in enumerate(self.bodies, start=1) if isinstance(b, StandardLinearSolid)}
+
+    @property
+    def material_pair(self) -> MaterialPair:
+        """The elastic pair; a viscoelastic body with its relaxed modulus (the long-time, quasi-static limit: the
+        normalisations a, d, p0, U0, the default grid and the grid's extent, which covers the largest contact, follow
+        it). The solvers get the effective pair of the step time (solver.visco.sls.effective_pair)."""
+        m = self.materials
+        E1 = m.E1_relaxed if m.visco1 == "sls" else m.E1
+        E2 = m.E2_relaxed if m.visco2 == "sls" else m.E2
+        return MaterialPair.from_moduli(E1, m.nu1, E2, m.nu2)
 
     @property
     def shape(self) -> str:
-        """The geometry's shape ('sphere', 'ellipsoid', 'cone', 'power', 'flat_rounded'; cases.scene.geometry)."""
-        return resolve_shape(self.geometry)
+        """The geometry's shape ('sphere', 'ellipsoid', 'cone', 'power', 'flat_rounded'; cases.scene.geometry), or
+        'wheelrail'."""
+        return "wheelrail" if self.wheelrail_on else resolve_shape(self.geometry)
 
     @property
     def profile(self):
@@ -378,7 +353,11 @@ class Scene(SceneLimits):
     @property
     def semi_axes(self) -> tuple[float, float]:
         """Contact semi-axes (mm) along x and y: exact for a sphere and the axisymmetric shapes (a, a),
-        Hertz's estimate c (Rx/Ry)^(+-1/3) for an ellipse, an estimate for the cylinder (cylinder_semi_axes)."""
+        Hertz's estimate c (Rx/Ry)^(+-1/3) for an ellipse, an estimate for the cylinder (cylinder_semi_axes), Hertz's
+        at the first touch for [wheelrail] (cases.scene.wheelrail.estimate)."""
+        if self.wheelrail_on:
+            from rollcontact.cases.scene.wheelrail import estimate
+            return estimate(self)[:2]
         if self.shape == "cylinder":
             return cylinder_semi_axes(self.geometry, self.material_pair.E_star, self.load.Fn)
         if self.shape not in ("sphere", "ellipsoid"):
@@ -418,6 +397,8 @@ class Scene(SceneLimits):
     def speed(self) -> float | None:
         """Rolling speed V (mm/s): [rolling] speed in a [rolling] scene, else [motion] speed; None without one
         (the scene is time-independent)."""
+        if self.wheelrail_on:
+            return self.wheelrail.speed
         return self.rolling.speed if self.rolling_on else self.motion.speed
 
     @property
@@ -431,7 +412,7 @@ class Scene(SceneLimits):
         of the path takes dt, the loading steps included: step n ends at time n dt, step 0 (the normal load from
         the unloaded state) at t = 0."""
         V = self.speed
-        if V is None:
+        if V is None or self.wheelrail_on:
             return None
         if self.rolling_on:
             if self.rolling.mode != "transient":
@@ -463,32 +444,6 @@ class Scene(SceneLimits):
 
     def replace(self, **sections) -> "Scene":
         return replace(self, **sections)
-
-
-def _parse_value(raw: str):
-    """A --set value: TOML, else a number as Python writes it (.5, 1., 1e3: not TOML), else the text."""
-    try:
-        return tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
-        pass
-    try:
-        return float(raw)  # a NaN is refused with the key by the field check, like TOML's nan
-    except ValueError:
-        return raw
-
-
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(v, float):
-        if math.isinf(v):
-            return "inf" if v > 0 else "-inf"
-        return repr(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-    return str(v)
 
 
 DEFAULT_SCENE_FILE = "paper_perpendicular.toml"

@@ -1,4 +1,4 @@
-"""Shakedown-limit search of the 3D model (`rollcontact limit-search`; seed Eqs. 18-19, theory.md §8.4).
+"""Shakedown-limit search of the 3D model (`rollcontact limit-search`; seed Eqs. 18-19, docs/theory.md §8.4).
 
 For each combination of the varied keys: bisection in f_t (or in w when load.ft is varied) on the state of the
 run, shakedown below, ratcheting above, to a stated tolerance, from a bracket around the kappa = 3/2 closed form.
@@ -14,12 +14,13 @@ import time
 
 import numpy as np
 
-from rollcontact.bem.errors import InputError, RollcontactError, SceneError
+from rollcontact.bem.errors import InputError, OutputWriteError, RollcontactError, SceneError
 from rollcontact.solver.rolling.shakedown import geometric_decay
 
+from rollcontact.cases.arguments import arg, on_command_line
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.cases.results.hdf5 import stored_history, stored_summary
-from rollcontact.cases.sweep.runner import claimed_table, execute_run, is_done, wait_for_claimed
+from rollcontact.cases.sweep.runner import claimed_table, execute_run, is_done, stopped_sweep, wait_for_claimed
 from rollcontact.cases.sweep.plan import (
     RANGE_DIGITS, PlannedRun, describe, build_scene, parse_vary, plan_sweep, run_file_name)
 from rollcontact.cases.sweep.table import write_summary
@@ -29,7 +30,7 @@ from rollcontact.cases.sweep.workers import make_pool, raise_if_interrupted, com
 
 LIMIT_KAPPAS = (1.0, 1.1, 1.5)
 """Closed-form MDR limits reported beside each 3D bracket: seed fits parallel (1) and perpendicular (1.1),
-pure MDR (1.5); seed Eqs. 18-19 and theory.md §8.4."""
+pure MDR (1.5); seed Eqs. 18-19 and docs/theory.md §8.4."""
 
 LIMIT_COLUMNS = ("index", "searched", "lower", "upper", "midpoint", "width", "status", "probes",
                  "undecided", "mdr_kappa=1", "mdr_kappa=1.1", "mdr_kappa=1.5", "f_t", "w", "error")
@@ -63,7 +64,7 @@ class _LimitSearch:
     def __init__(self, base, overrides, values, searched, tol, runs_dir, outdir, log):
         self.base, self.overrides, self.values = base, list(overrides), dict(values)
         self.searched, self.tol, self.runs_dir, self.outdir, self.log = searched, tol, runs_dir, outdir, log
-        scene = build_scene(base, overrides, values)
+        scene = build_scene(base, overrides, values, (searched,))
         self.periods = scene.motion.periods
         self.probes, self.undecided = 0, []
         self.range = _SEARCH_RANGE[searched]
@@ -81,7 +82,7 @@ class _LimitSearch:
         values[self.searched] = float(f"{x:.{RANGE_DIGITS}g}")
         extra = [] if periods == self.periods else [f"motion.periods={periods}"]
         name_values = dict(values, **({"motion.periods": periods} if extra else {}))
-        scene = build_scene(self.base, self.overrides + extra, values)
+        scene = build_scene(self.base, self.overrides + extra, values, (self.searched,))
         toml = scene.to_toml()
         run = PlannedRun(self.probes, name_values, toml, self.runs_dir / run_file_name(name_values, toml),
                          scene.name)
@@ -93,6 +94,8 @@ class _LimitSearch:
             result = execute_run(toml, scene.name, str(run.path), None if extend_from is None else str(extend_from))
             if result["status"] == "claimed":       # another limit search on the folder computes this probe
                 result = wait_for_claimed(run)
+            if result.get("write_error"):
+                raise OutputWriteError(result["error"])
             if result["status"] != "complete":
                 raise RollcontactError(f"probe {describe(name_values)} failed: {result['error']}")
             summary = result["summary"]
@@ -207,7 +210,7 @@ def _limit_task(base_toml, base_name, overrides, values, searched, tol, runs_dir
     from rollcontact.solver.mdr import limits as lim
     base = Scene.from_toml_text(base_toml, name=base_name)
     search = _LimitSearch(base, overrides, values, searched, tol, Path(runs_dir), Path(outdir), log)
-    scene = build_scene(base, overrides, values)
+    scene = build_scene(base, overrides, values, (searched,))
     row = dict(values)
     kappas = {k: f"mdr_kappa={k:g}" for k in LIMIT_KAPPAS}
     if searched == "load.ft":
@@ -221,17 +224,46 @@ def _limit_task(base_toml, base_name, overrides, values, searched, tol, runs_dir
     for k, label in kappas.items():
         row[label] = closed[k]
     # the 3-D limits of the paper's sphere lie on the kappa = 3/2 closed form at both settings and every alignment
-    # measured (README; docs/alignment.md), so the search starts there and widens outwards when it has to
+    # measured (docs/alignment.md), so the search starts there and widens outwards when it has to
     half = max(_FIRST_HALF_WIDTH, tol)
     lo_guess, hi_guess = closed[1.5] - half, closed[1.5] + half
     try:
         lo, hi = search.bracket(lo_guess, hi_guess)
         lo, hi, status = search.bisect(lo, hi)
         row.update(lower=lo, upper=hi, midpoint=0.5 * (lo + hi), width=hi - lo, status=status, error="")
+    except OutputWriteError as exc:        # the search stops (search_limits)
+        row.update(status="failed", error=str(exc), write_error=True)
     except RollcontactError as exc:
         row.update(status="failed", error=f"{type(exc).__name__}: {exc}")
     row.update(probes=search.probes, undecided=";".join(f"{x:.6g}" for x in search.undecided))
     return row
+
+
+def fixed_range(searched: str) -> tuple[float, float]:
+    """The open range of the fixed coordinate of a search in `searched` (the other one, w or f_t) in which the pure-MDR
+    limit (kappa = 3/2, where the 3-D limits lie: README) falls inside the searched range _SEARCH_RANGE: w in
+    (0.00667, 0.917) for a search in f_t, f_t in (0.000596, 0.970) for a search in w. Outside it the search has no
+    bracket to find (w = 1.5 shakes down at no load: `rollcontact limits` refuses w > 1)."""
+    from rollcontact.solver.mdr import limits as lim
+    lo, hi = _SEARCH_RANGE[searched]
+    if searched == "load.ft":
+        return lim.w_lim(hi, 1.5), lim.w_lim(lo, 1.5)
+    return lim.f_t_lim(hi, 1.5), lim.f_t_lim(lo, 1.5)
+
+
+def _check_fixed_coordinate(plan, searched: str):
+    """Every combination's fixed coordinate (w of a search in f_t, f_t of one in w) lies in `fixed_range`, checked
+    before any probe runs (SceneError naming the varied value and the range)."""
+    lo, hi = fixed_range(searched)
+    name, key = ("w = W/a", "motion.w") if searched == "load.ft" else ("f_t = Ft/(mu Fn)", "load.ft")
+    for run in plan:
+        scene = Scene.from_toml_text(run.scene_toml, run_limits=False)
+        x = scene.amplitude / scene.contact_radius if searched == "load.ft" else scene.f_t
+        if not lo < x < hi:
+            raise SceneError(f"{arg('vary')} {describe(run.values)}: {name} = {x:.6g}; a limit search in "
+                             f"{searched.split('.')[1]} needs {lo:.4g} < {key.split('.')[1]} < {hi:.4g} (there the "
+                             f"pure-MDR limit lies inside the searched range {list(_SEARCH_RANGE[searched])}); "
+                             "nothing was run")
 
 
 @dataclass
@@ -247,6 +279,25 @@ class LimitReport:
     @property
     def limits_csv(self) -> Path:
         return self.outdir / "limits.csv"
+
+    def report(self) -> str:
+        """The lines `rollcontact limit-search` prints: each combination's 3-D bracket and the MDR closed forms."""
+        name = "f_t,lim" if self.searched == "load.ft" else "w_lim"
+        lines = []
+        for r in self.rows:
+            fixed = " ".join(f"{k}={r[k]}" for k in self.keys)
+            if r["status"] == "failed":
+                lines.append(f"{fixed}: failed: {r['error']}")
+                continue
+            closed = ", ".join(f"{c.split('=')[1]}: {r[c]:.4f}" for c in ("mdr_kappa=1", "mdr_kappa=1.1",
+                                                                           "mdr_kappa=1.5"))
+            lines.append(f"{fixed}: 3D {name} in [{r['lower']:.4f}, {r['upper']:.4f}] (mid {r['midpoint']:.4f}, "
+                         f"{r['status']}, {r['probes']} probes); MDR kappa {closed}")
+        lines.append(f"limits: {self.limits_csv}")
+        return "\n".join(lines)
+
+    def __repr__(self) -> str:
+        return f"LimitReport({len(self.rows)} combination(s), searched={self.searched!r}, outdir={str(self.outdir)!r})"
 
 
 def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=None, scheduler=None,
@@ -273,20 +324,27 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
                          f"(got {has_w + has_ft}); the other one is searched")
     if not (has_ft or has_w):
         raise SceneError("limit-search: vary motion.w (to find f_t,lim(w)) or load.ft (to find w_lim(f_t)), "
-                         "e.g. --vary motion.w=0.1,0.23,0.4")
+                         f"e.g. {arg('vary')} " + ("motion.w=0.1,0.23,0.4" if on_command_line() else
+                                                   "{'motion.w': [0.1, 0.23, 0.4]}"))
     if not tol > 0 or not tol < 0.5:
-        raise InputError(f"--tol = {tol!r}: allowed range is 0 < tol < 0.5 (in units of f_t or w)")
+        raise InputError(f"{arg('tol')} = {tol!r}: allowed range is 0 < tol < 0.5 (in units of f_t or w)")
     searched = "motion.w" if has_ft else "load.ft"
     lo_x = _SEARCH_RANGE[searched][0]
+    for item in overrides:
+        key = item.split("=", 1)[0].strip()
+        if key in (_W_KEYS if searched == "motion.w" else _FT_KEYS):
+            raise SceneError(f"{arg('overrides')} {item!r}: the limit search searches {searched}, so it sets it in "
+                             f"every probe; drop the {arg('overrides')}")
     if scheduler:
         require_dask(scheduler)
     outdir = Path(outdir).absolute()     # the workers (Dask's among them) may run in other folders
-    plan = plan_sweep(base, axes, outdir, list(overrides) + [f"{searched}={lo_x}"])
+    plan = plan_sweep(base, axes, outdir, list(overrides) + [f"{searched}={lo_x}"], replaces=(searched,))
+    _check_fixed_coordinate(plan, searched)
     outdir = output_folder(outdir)
     runs_dir = outdir / "runs"
     jobs = default_jobs() if jobs is None else int(jobs)
     if jobs < 1:
-        raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
+        raise InputError(f"{arg('jobs')} = {jobs!r}: allowed range is jobs >= 1")
     attrs = {"base_scene": base.to_toml(), "overrides": list(overrides) or [""], "tol": float(tol),
              "searched": searched}
     with claimed_table(outdir / "limits.h5", keys, attrs, overwrite):
@@ -302,6 +360,8 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
         for run, row, failure in completed(pool, tasks):
             if failure:
                 row = dict(run.values, status="failed", error=failure)
+            if row.pop("write_error", False):
+                raise OutputWriteError(row["error"])
             row["index"] = run.index
             rows[run.index] = row
             write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)
@@ -312,6 +372,9 @@ def search_limits(base: Scene, axes, outdir, *, overrides=(), tol=0.01, jobs=Non
                       file=progress, flush=True)
         pool.close()
         raise_if_interrupted()
+    except OutputWriteError as exc:
+        pool.stop()
+        raise stopped_sweep(exc, outdir, "limits", len(rows), len(plan)) from None
     except KeyboardInterrupt:
         pool.stop()
         write_summary(outdir, keys, rows.values(), stem="limits", columns=LIMIT_COLUMNS, attrs=attrs)

@@ -1,5 +1,5 @@
 """Sweep plans: the varied scene keys (`--vary`), their combinations as validated scenes, and run file names
-(cases.sweep.runner; theory.md §8).
+(cases.sweep.runner; docs/theory.md §8).
 
     --vary load.ft=0.1:0.9:9        range start:stop:count, both ends included (count >= 2; 1 gives start)
     --vary motion.w=0.1,0.23,0.4    comma list (values parsed as TOML: numbers, or strings such as bem,mdr)
@@ -21,6 +21,7 @@ import tomllib
 import numpy as np
 
 from rollcontact.bem.errors import SceneError
+from rollcontact.cases.arguments import arg, on_command_line
 
 from rollcontact.cases.scene.scene import Scene
 
@@ -48,44 +49,47 @@ def parse_vary(spec: str) -> Axis:
     list `v1,v2,...` (one value is allowed). Raises SceneError naming the argument and the expected syntax.
     """
     syntax = ("expected --vary section.key=start:stop:count (count >= 1, both ends included) or "
-              "--vary section.key=v1,v2,... e.g. --vary load.ft=0.1:0.9:9 or --vary motion.w=0.1,0.23,0.4")
+              "--vary section.key=v1,v2,... e.g. --vary load.ft=0.1:0.9:9 or --vary motion.w=0.1,0.23,0.4"
+              if on_command_line() else
+              "expected vary = {'section.key': [v1, v2, ...]} or {'section.key': 'start:stop:count'} (count >= 1, "
+              "both ends included), e.g. {'load.ft': '0.1:0.9:9', 'motion.w': [0.1, 0.23, 0.4]}")
     if "=" not in spec:
-        raise SceneError(f"--vary {spec!r}: {syntax}")
+        raise SceneError(f"{arg('vary')} {spec!r}: {syntax}")
     key, raw = (s.strip() for s in spec.split("=", 1))
     if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*\.[A-Za-z_][A-Za-z0-9_]*", key):
-        raise SceneError(f"--vary {spec!r}: key {key!r} is not of the form section.key; {syntax}")
+        raise SceneError(f"{arg('vary')} {spec!r}: key {key!r} is not of the form section.key; {syntax}")
     if not raw:
-        raise SceneError(f"--vary {spec!r}: no values; {syntax}")
+        raise SceneError(f"{arg('vary')} {spec!r}: no values; {syntax}")
     if ":" in raw:
         parts = raw.split(":")
         if len(parts) != 3:
-            raise SceneError(f"--vary {spec!r}: a range has three parts start:stop:count; {syntax}")
+            raise SceneError(f"{arg('vary')} {spec!r}: a range has three parts start:stop:count; {syntax}")
         try:
             start, stop = float(parts[0]), float(parts[1])
         except ValueError:
-            raise SceneError(f"--vary {spec!r}: range start and stop must be numbers; {syntax}") from None
+            raise SceneError(f"{arg('vary')} {spec!r}: range start and stop must be numbers; {syntax}") from None
         try:
             count = int(parts[2])
         except ValueError:
-            raise SceneError(f"--vary {spec!r}: range count {parts[2]!r} must be an integer >= 1; "
+            raise SceneError(f"{arg('vary')} {spec!r}: range count {parts[2]!r} must be an integer >= 1; "
                              f"{syntax}") from None
         if count < 1:
-            raise SceneError(f"--vary {spec!r}: range count = {count}: allowed range is count >= 1")
+            raise SceneError(f"{arg('vary')} {spec!r}: range count = {count}: allowed range is count >= 1")
         if not (math.isfinite(start) and math.isfinite(stop)):
-            raise SceneError(f"--vary {spec!r}: range start and stop must be finite numbers")
+            raise SceneError(f"{arg('vary')} {spec!r}: range start and stop must be finite numbers")
         if count == 1:
             values = (start,)
         else:
             values = tuple(float(f"{v:.{RANGE_DIGITS}g}") for v in np.linspace(start, stop, count))
         if len(set(values)) != len(values):
-            raise SceneError(f"--vary {spec!r}: the range repeats values; use start != stop")
+            raise SceneError(f"{arg('vary')} {spec!r}: the range repeats values; use start != stop")
         return Axis(key, values)
     items = [s.strip() for s in raw.split(",")]
     if any(not s for s in items):
-        raise SceneError(f"--vary {spec!r}: empty item in the comma list; {syntax}")
+        raise SceneError(f"{arg('vary')} {spec!r}: empty item in the comma list; {syntax}")
     values = tuple(_parse_value(s) for s in items)
     if len(set(map(repr, values))) != len(values):
-        raise SceneError(f"--vary {spec!r}: a value is listed twice")
+        raise SceneError(f"{arg('vary')} {spec!r}: a value is listed twice")
     return Axis(key, values)
 
 
@@ -157,25 +161,37 @@ def run_file_name(values: dict, scene_toml: str) -> str:
     return f"{stem}__{digest}.h5"
 
 
-def build_scene(base: Scene, overrides, values: dict) -> Scene:
-    """base + `--set` overrides + the varied values (in that order; later wins). Raises SceneError."""
+def build_scene(base: Scene, overrides, values: dict, replaces=()) -> Scene:
+    """base + `--set` overrides + the varied values (in that order). Raises SceneError. replaces: keys that may
+    replace the other spelling the base scene gives (Scene.with_overrides; the quantity a limit search searches)."""
     assignments = list(overrides) + [f"{k}={_toml_literal(v)}" for k, v in values.items()]
-    return base.with_overrides(assignments)
+    return base.with_overrides(assignments, replaces=replaces)
 
 
-def _refuse_set_of_a_varied_key(overrides, keys):
-    """A --set of the other spelling of a varied key (load.Ft while load.ft is varied) contradicts every run: refused,
-    naming both. A --set of the varied key itself is a base value that the varied values replace (later wins)."""
-    from rollcontact.cases.scene.scene import other_spellings
+def _refuse_set_of_a_varied_key(base: Scene, overrides, keys):
+    """A --set of a varied key, or of its other spelling (load.Ft while load.ft is varied), would be replaced in every
+    run: refused, naming both; so is a varied key whose other spelling the base scene gives (load.Ft varied where the
+    scene gives load.ft)."""
+    from rollcontact.cases.scene.scene import SPELLINGS, other_spellings
     for item in overrides:
-        others = other_spellings(item.split("=", 1)[0].strip())
+        key_set = item.split("=", 1)[0].strip()
         for key in keys:
-            if key in others:
-                raise SceneError(f"--set {item!r} and --vary {key}: two spellings of one quantity; the sweep sets "
-                                 f"{key} in every run, drop the --set")
+            if key == key_set or key in other_spellings(key_set):
+                what = "the same key" if key == key_set else "two spellings of one quantity"
+                raise SceneError(f"{arg('overrides')} {item!r} and {arg('vary')} {key}: {what}; the sweep sets {key} "
+                                 f"in every run, so the {arg('overrides')} would be replaced unannounced: drop it")
+    given = base.to_dict()
+    set_keys = {item.split("=", 1)[0].strip() for item in overrides}
+    for key in keys:
+        sec, _, name = key.partition(".")
+        other = SPELLINGS.get((sec, name))
+        if other and other in given.get(sec, {}) and f"{sec}.{other}" not in set_keys:
+            raise SceneError(f"{arg('vary')} {key}: the scene gives {sec}.{other} = {given[sec][other]!r}, the same "
+                             f"quantity in its other spelling; vary {sec}.{other}, or use a scene file with {key} in "
+                             f"place of {sec}.{other}")
 
 
-def plan_sweep(base: Scene, axes, outdir, overrides=()) -> list[PlannedRun]:
+def plan_sweep(base: Scene, axes, outdir, overrides=(), replaces=()) -> list[PlannedRun]:
     """Every combination of the axes (first axis slowest) as a validated PlannedRun.
 
     All combinations are validated before anything runs; if any is invalid a SceneError lists them (up to
@@ -185,18 +201,18 @@ def plan_sweep(base: Scene, axes, outdir, overrides=()) -> list[PlannedRun]:
     keys = [a.key for a in axes]
     if len(set(keys)) != len(keys):
         dup = sorted({k for k in keys if keys.count(k) > 1})
-        raise SceneError(f"--vary: key(s) {dup} given more than once; give each key once with all its values")
-    _refuse_set_of_a_varied_key(overrides, keys)
+        raise SceneError(f"{arg('vary')}: key(s) {dup} given more than once; give each key once with all its values")
+    _refuse_set_of_a_varied_key(base, [o for o in overrides if o.split("=", 1)[0].strip() not in replaces], keys)
     try:
-        base_checked = base.with_overrides(list(overrides))
+        base_checked = base.with_overrides(list(overrides), replaces=replaces)
     except SceneError as exc:
-        raise SceneError(f"--set: {exc}") from None
+        raise SceneError(f"{arg('overrides')}: {exc}") from None
     outdir = Path(outdir)
     runs, bad = [], []
     for index, combo in enumerate(itertools.product(*(a.values for a in axes))):
         values = dict(zip(keys, combo))
         try:
-            scene = build_scene(base, overrides, values)
+            scene = build_scene(base, overrides, values, replaces)
         except SceneError as exc:
             bad.append(f"  {describe(values)}: {exc}")
             continue

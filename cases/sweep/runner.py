@@ -1,4 +1,4 @@
-"""Parameter sweeps over scenes (seed Fig. 8; theory.md §8).
+"""Parameter sweeps over scenes (seed Fig. 8; docs/theory.md §8).
 
 A sweep is the Cartesian product of a few scene keys ("axes"), each given on the command line as
 `--vary section.key=start:stop:count` or `--vary section.key=v1,v2,...` (syntax: `cases.sweep.plan.parse_vary`).
@@ -45,14 +45,17 @@ import tomllib
 
 import numpy as np
 
-from rollcontact.bem.errors import InputError, OutputExistsError, OutputInUseError, RollcontactError
+from rollcontact.bem.errors import (InputError, OutputExistsError, OutputInUseError, OutputWriteError,
+                                    RollcontactError)
 
 from rollcontact.cases.results.hdf5 import is_complete, stored_summary
+from rollcontact.cases.arguments import arg, flag, on_command_line
 from rollcontact.cases.results.lock import OutputLock, holder_of
 from rollcontact.cases.results.outputs import output_folder
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.cases.sweep.plan import PlannedRun, describe, parse_vary, plan_sweep
-from rollcontact.cases.sweep.table import CREEP_COLUMNS, write_summary
+from rollcontact.cases.sweep.table import (AUTO_COLUMNS, CREEP_COLUMNS, VISCO_COLUMNS, WHEELRAIL_COLUMNS,
+                                          write_summary)
 from rollcontact.cases.sweep.workers import completed, default_jobs, make_pool, raise_if_interrupted, require_dask
 
 #: seconds between two looks at a run that another process computes, and before saying whom a sweep waits for
@@ -94,6 +97,8 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: st
         lock.acquire()
     except OutputInUseError as exc:
         return {"status": "claimed", "error": str(exc), "summary": {}, "wall_time": 0.0}
+    except OutputWriteError as exc:
+        return {"status": "failed", "error": str(exc), "summary": {}, "wall_time": 0.0, "write_error": True}
     try:
         stored = stored_summary(out_path) if Path(out_path).exists() else None
         if stored is not None and stored["status"] == "complete" and stored["scene"] == scene_toml:
@@ -104,7 +109,14 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: st
         attrs = None if source is None else dict(restarted_from=str(Path(extend_from).resolve()),
                                                  restart_step=source.step,
                                                  restart_overrides=[f"motion.periods={scene.motion.periods}"])
+        resumed = interrupted_source(out_path, stored, scene_toml)
+        if resumed is not None:      # a run of this scene killed or interrupted: continued from its last checkpoint
+            source, attrs = resumed, dict(restarted_from=str(Path(out_path).resolve()), restart_step=resumed.step,
+                                          restart_overrides=[])
         result = run_scene(scene, out_path, overwrite=True, lock=lock, restart=source, attrs=attrs)
+    except OutputWriteError as exc:     # a full disk, a vanished folder: the sweep stops (cases.sweep.runner)
+        return {"status": "failed", "error": str(exc), "summary": {}, "wall_time": time.perf_counter() - t0,
+                "write_error": True}
     except RollcontactError as exc:
         return {"status": "failed", "error": f"{type(exc).__name__}: {exc}", "summary": {},
                 "wall_time": time.perf_counter() - t0}
@@ -112,6 +124,23 @@ def execute_run(scene_toml: str, scene_name: str, out_path: str, extend_from: st
         lock.release()
     return {"status": result.status, "error": result.error, "summary": dict(result.summary),
             "wall_time": result.wall_time}
+
+
+def interrupted_source(out_path, stored, scene_toml: str):
+    """The run file `out_path` as a cases.run.restart.RestartSource when it holds the planned scene (`scene_toml`)
+    stopped part-way: a checkpoint of a killed run (status 'incomplete') or a run interrupted by the user (status
+    'failed'), with the fields of a stored step to continue from; None otherwise (the run starts from step 0).
+    `stored`: its stored_summary (None for no file)."""
+    from rollcontact.cases.run.restart import load_restart
+    if stored is None or stored["scene"] != scene_toml:
+        return None
+    if not (stored["status"] == "incomplete" or (stored["status"] == "failed"
+                                                  and stored["error"] == "interrupted by the user")):
+        return None
+    try:
+        return load_restart(out_path)
+    except (RollcontactError, OSError):
+        return None
 
 
 def wait_for_claimed(run: PlannedRun, poll: float = CLAIM_POLL, notice_after: float = CLAIM_NOTICE) -> dict:
@@ -148,6 +177,12 @@ def _row(run: PlannedRun, result: dict, outdir: Path) -> dict:
                file=os.path.relpath(run.path, outdir), error=result.get("error") or "")
     if "F_x" in s:                                     # a [rolling] scene (cases.sweep.table.CREEP_COLUMNS)
         row.update({k: s.get(k) for k in CREEP_COLUMNS})
+    if "pressure_centroid_x" in s:                     # viscoelastic bodies (cases.sweep.table.VISCO_COLUMNS)
+        row.update({k: s.get(k) for k in VISCO_COLUMNS})
+    if "n_patches" in s:                               # a [wheelrail] scene (cases.sweep.table.WHEELRAIL_COLUMNS)
+        row.update({k: s.get(k) for k in WHEELRAIL_COLUMNS})
+    if "predicted_error" in s:                         # solver.fidelity = "auto" (cases.sweep.table.AUTO_COLUMNS)
+        row.update({k: s.get(k) for k in AUTO_COLUMNS})
     try:
         row["angle"] = float(tomllib.loads(run.scene_toml)["motion"]["angle"])
     except (KeyError, tomllib.TOMLDecodeError):
@@ -213,6 +248,15 @@ class SweepReport:
     def summary_h5(self) -> Path:
         return self.outdir / "summary.h5"
 
+    def report(self) -> str:
+        """The line `rollcontact sweep` prints."""
+        return (f"{self.planned} run(s): {self.ran} run now, {self.skipped} skipped (already complete), "
+                f"{self.elsewhere} run by another process, {self.failed} failed; summary: {self.summary_csv}")
+
+    def __repr__(self) -> str:
+        return (f"SweepReport({self.planned} planned, {self.ran} ran, {self.skipped} skipped, {self.failed} failed, "
+                f"outdir={str(self.outdir)!r})")
+
 
 
 def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=None, overwrite=False,
@@ -232,7 +276,7 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     axes = [parse_vary(a) if isinstance(a, str) else a for a in axes]
     outdir = Path(outdir).absolute()     # the workers (Dask's among them) may run in other folders
     if jobs is not None and int(jobs) < 1:
-        raise InputError(f"--jobs = {jobs!r}: allowed range is jobs >= 1")
+        raise InputError(f"{arg('jobs')} = {jobs!r}: allowed range is jobs >= 1")
     jobs = default_jobs() if jobs is None else int(jobs)
     if scheduler:
         require_dask(scheduler)
@@ -257,6 +301,8 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
     pool = make_pool(jobs, scheduler) if todo else None
 
     def finish(run, result):
+        if result.get("write_error"):
+            raise OutputWriteError(result["error"])
         row = _row(run, result, outdir)
         rows[run.index] = row
         report.elsewhere += bool(result.get("elsewhere"))
@@ -273,6 +319,10 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
         for run in claimed:
             finish(run, wait_for_claimed(run))
             raise_if_interrupted()
+    except OutputWriteError as exc:
+        if pool is not None:
+            pool.stop()
+        raise stopped_sweep(exc, outdir, "summary", len(rows), len(plan)) from None
     except KeyboardInterrupt:
         report.interrupted = True
         if pool is not None:
@@ -294,6 +344,14 @@ def run_sweep(base: Scene, axes, outdir, *, overrides=(), jobs=None, scheduler=N
               f"{report.skipped} skipped, {report.elsewhere} by another process; summary in "
               f"{outdir / 'summary.csv'}", file=progress, flush=True)
     return report
+
+
+def stopped_sweep(exc: OutputWriteError, outdir: Path, stem: str, finished: int, planned: int) -> OutputWriteError:
+    """The error of a sweep (or limit search) that could not write (a run file, its summary table): nothing more is
+    written; the complete run files stay, and the table as last written."""
+    return OutputWriteError(f"{exc}; the {'sweep' if stem == 'summary' else 'limit search'} stopped: its complete "
+                            f"run files stay in {outdir}, and {outdir / (stem + '.csv')} as last written ({finished} "
+                            f"of {planned} finished); rerun the same command to resume", path=exc.path, errno=exc.errno)
 
 
 def _run_here(pool, todo, finish) -> list:
@@ -331,7 +389,7 @@ def claimed_table(table: Path, keys, attrs: dict, overwrite: bool):
     whose table it wrote itself (the same varied keys, base scene and overrides); the table of another one is not
     replaced unless `overwrite` (OutputExistsError naming the file and --overwrite)."""
     from rollcontact.cases.sweep.table import table_attrs
-    lock = OutputLock(table, label=f"-o {table.parent}").acquire(wait=True)
+    lock = OutputLock(table, label=f"{arg('output')} {table.parent}").acquire(wait=True)
     try:
         stored = table_attrs(table) if table.exists() and not overwrite else {}
         mine = {"varied": list(keys), **{k: attrs[k] for k in ("base_scene", "overrides")}}
@@ -340,8 +398,9 @@ def claimed_table(table: Path, keys, attrs: dict, overwrite: bool):
         if stored is None or differs:
             what = ("is not a table of rollcontact" if stored is None else
                     f"belongs to another sweep (its {', '.join(differs)} differ)")
-            raise OutputExistsError(f"-o {table.parent}: {table} {what}; rollcontact does not replace it unless "
-                                    "asked: add --overwrite, or choose another folder")
+            raise OutputExistsError(f"{arg('output')} {table.parent}: {table} {what}; rollcontact does not replace it "
+                                    f"unless asked: {'add' if on_command_line() else 'pass'} {flag('overwrite')}, or "
+                                    "choose another folder")
         yield
     finally:
         lock.release()

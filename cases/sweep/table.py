@@ -5,13 +5,14 @@ Units per column in `COLUMN_UNITS` (a varied key takes its scene unit); missing 
 NaN (floats) or -1 (counts) in HDF5.
 """
 import csv
+import io
 import math
-import os
 from pathlib import Path
 
 import h5py
 import numpy as np
 
+from rollcontact.cases.results.writing import new_hdf5, write_text
 from rollcontact.cases.scene.scene import key_unit
 
 SUMMARY_COLUMNS = ("index", "state", "status", "f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period",
@@ -31,14 +32,31 @@ periods_to_shakedown, steps, iterations: counts; wall_time: s of the run itself;
 #: the creepages xi, eta (dimensionless) and phi (1/mm), the forces F_x, F_y (N) and moment M_z (N mm) on the
 #: sphere in Kalker's convention, and the stick fraction of the contact.
 CREEP_COLUMNS = ("xi", "eta", "phi", "F_x", "F_y", "M_z", "stick_fraction")
+#: Further columns of a sweep over a scene with viscoelastic bodies (docs/viscoelastic.md), added only when its runs
+#: have them: the pressure centroid along the rolling direction (mm), the rolling resistance moment (N mm), the viscous
+#: work of the last period (N mm) and the viscous power of steady rolling (W).
+VISCO_COLUMNS = ("pressure_centroid_x", "rolling_resistance_moment", "viscous_dissipation_per_period",
+                 "viscous_power")
+
+#: Further columns of a sweep over a [wheelrail] scene (cases.run.wheelrail_run), added only when its runs have them:
+#: the number of contact patches, the total force on the wheel in the track frame (N) and the wheelset centre's height
+#: above its nominal position (mm). The patches themselves are in the run files (/summary patch_* arrays).
+WHEELRAIL_COLUMNS = ("n_patches", "F_track_x", "F_track_y", "F_track_z", "z_ws")
+
+#: Further columns of a sweep whose scenes ask for solver.fidelity = "auto" (cases.run.fidelity), added only when its
+#: runs have them: the model each run chose and its predicted error (docs/creep_fidelity.md).
+AUTO_COLUMNS = ("fidelity_used", "predicted_error")
 
 #: `units` attribute of the summary.h5 / limits.h5 columns ('-': dimensionless, a count or text, as in the
 #: run files); a varied key takes its scene unit (cases.scene.key_unit).
 COLUMN_UNITS = {"angle": "deg", "U_sd": "mm", "dU_per_period": "mm", "U_perp": "mm", "dU_perp_per_period": "mm",
-                "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm"}
+                "dissipation_per_period": "N mm", "wall_time": "s", "phi": "1/mm", "F_x": "N", "F_y": "N", "M_z": "N mm",
+                "pressure_centroid_x": "mm", "rolling_resistance_moment": "N mm",
+                "viscous_dissipation_per_period": "N mm", "viscous_power": "W",
+                "F_track_x": "N", "F_track_y": "N", "F_track_z": "N", "z_ws": "mm"}
 _FLOAT_COLUMNS = ("f_t", "w", "angle", "u_sd", "du", "U_sd", "dU_per_period", "U_perp", "dU_perp_per_period",
-                  "dissipation_per_period", "u_stat", "wall_time")
-_INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations")
+                  "dissipation_per_period", "u_stat", "wall_time") + VISCO_COLUMNS
+_INT_COLUMNS = ("index", "periods_to_shakedown", "steps", "iterations", "n_patches")
 
 
 def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS, attrs=None):
@@ -49,37 +67,32 @@ def write_summary(outdir, keys, rows, *, stem="summary", columns=SUMMARY_COLUMNS
     strings UTF-8), attributes `varied` (the keys) and any `attrs` given (e.g. the base scene TOML).
     """
     outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     rows = sorted(rows, key=lambda r: r.get("index", 0))
     if columns is SUMMARY_COLUMNS and any(r.get("F_x") is not None for r in rows):
         columns = SUMMARY_COLUMNS + CREEP_COLUMNS      # a sweep over a [rolling] scene
+    elif columns is SUMMARY_COLUMNS and any(r.get("n_patches") is not None for r in rows):
+        columns = SUMMARY_COLUMNS + WHEELRAIL_COLUMNS  # a sweep over a [wheelrail] scene
+    if any(r.get("pressure_centroid_x") is not None for r in rows):
+        columns = tuple(columns) + VISCO_COLUMNS       # viscoelastic bodies
+    if any(r.get("predicted_error") is not None for r in rows):
+        columns = tuple(columns) + AUTO_COLUMNS        # a sweep of solver.fidelity = "auto"
     header = list(keys) + [c for c in columns if c not in keys]
-    tmp = outdir / f".{stem}.csv.{os.getpid()}.tmp"
-    try:
-        with open(tmp, "w", newline="") as fh:
-            writer = csv.writer(fh)
-            writer.writerow(header)
-            for r in rows:
-                writer.writerow([_csv_cell(r.get(c)) for c in header])
-        os.replace(tmp, outdir / f"{stem}.csv")
-    finally:
-        tmp.unlink(missing_ok=True)
-    tmp = outdir / f".{stem}.h5.{os.getpid()}.tmp"
-    try:
-        with h5py.File(tmp, "w") as h5:
-            h5.attrs["varied"] = list(keys)
-            h5.attrs["columns"] = header
-            for k, v in (attrs or {}).items():
-                h5.attrs[k] = v
-            grp = h5.create_group("runs")
-            for c in header:
-                vals = [r.get(c) for r in rows]
-                ds = grp.create_dataset(c, data=_column_array(c, vals))
-                ds.attrs["units"] = COLUMN_UNITS.get(c) or key_unit(c)
-        os.replace(tmp, outdir / f"{stem}.h5")
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+    text = io.StringIO(newline="")
+    writer = csv.writer(text)
+    writer.writerow(header)
+    for r in rows:
+        writer.writerow([_csv_cell(r.get(c)) for c in header])
+    write_text(outdir / f"{stem}.csv", text.getvalue(), "summary table")
+    with new_hdf5(outdir / f"{stem}.h5", "summary table") as (h5, _):
+        h5.attrs["varied"] = list(keys)
+        h5.attrs["columns"] = header
+        for k, v in (attrs or {}).items():
+            h5.attrs[k] = v
+        grp = h5.create_group("runs")
+        for c in header:
+            vals = [r.get(c) for r in rows]
+            ds = grp.create_dataset(c, data=_column_array(c, vals))
+            ds.attrs["units"] = COLUMN_UNITS.get(c) or key_unit(c)
 
 
 def _csv_cell(v):

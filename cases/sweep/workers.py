@@ -15,6 +15,7 @@ import time
 
 from rollcontact.bem.wisdom import process_exists
 from rollcontact.bem.errors import InputError
+from rollcontact.cases.arguments import arg
 
 def _worker_init(sweep_pid: int):
     """Worker set-up: one BLAS thread, and exit if the sweep process dies (e.g. SIGKILL).
@@ -99,7 +100,7 @@ class _DaskPool:
         try:
             self.client = distributed.Client(address, timeout=30)
         except (OSError, TimeoutError, ValueError) as exc:
-            raise InputError(f"--scheduler {address!r}: cannot connect to the Dask scheduler ({exc})") from None
+            raise InputError(f"{arg('scheduler')} {address!r}: cannot connect to the Dask scheduler ({exc})") from None
 
     def submit(self, fn, *args):
         return self.client.submit(fn, *args, pure=False)
@@ -157,12 +158,12 @@ def require_dask(address=None):
     """The dask.distributed module, or InputError saying how to install it or that `address` is not a scheduler
     address (checked before a sweep writes anything)."""
     if address is not None and not re.fullmatch(r"([a-z]+://)?(\[[0-9A-Fa-f:.]+\]|[^\s:/\[\]]+):\d+", str(address)):
-        raise InputError(f"--scheduler {address!r}: expected HOST:PORT or tcp://HOST:PORT (an IPv6 host in brackets), "
+        raise InputError(f"{arg('scheduler')} {address!r}: expected HOST:PORT or tcp://HOST:PORT (an IPv6 host in brackets), "
                          "e.g. tcp://127.0.0.1:8786")
     try:
         import distributed
     except ImportError:
-        raise InputError("--scheduler needs the optional dependency dask.distributed: "
+        raise InputError(f"{arg('scheduler')} needs the optional dependency dask.distributed: "
                          "pip install 'rollcontact[dask]'") from None
     return distributed
 

@@ -331,8 +331,12 @@ def veldep(quick: bool):
         solves.append(rec.friction.iterations)
     fx = np.array(fx)
     tail = fx[int(0.75 * len(fx)):]
+    drops = np.nonzero(np.diff(tail) < -0.5 * (tail.max() - tail.min()))[0]     # the sawtooth's falls
+    period = float(np.median(np.diff(drops))) if len(drops) > 2 else None
     transient = dict(example="veldep_fric", case="transient from rest", Fx_over_muFn=float(tail.mean()),
                      Fx_min=float(tail.min()), Fx_max=float(tail.max()), steps=len(fx) - 1,
+                     sawtooth_period_steps=period,
+                     shift_of_mean=float(tail.mean()) - 0.5 * sum(VELDEP_REF["transient_range"]),
                      solves_per_step=float(np.mean(solves)), ref=json.dumps(VELDEP_REF), distance=np.array(x),
                      history=fx)
     return steady, transient
@@ -356,7 +360,7 @@ def study_configurations(quick: bool) -> dict:
 
 def study(out: Path, quick: bool, jobs: int, runs: Path) -> dict:
     import rollcontact
-    ws = [0.23] if quick else [0.1, 0.23, 0.5]
+    ws = [0.23] if quick else [0.1, 0.23, 0.35, 0.5, 0.7]
     tol = 0.05 if quick else 0.01
     rows = []
     for name, (over, factor) in study_configurations(quick).items():

@@ -1,4 +1,4 @@
-"""Rolling with creepage and spin (theory.md §7.3, §11.5), in Kalker's sign convention (`kalker`).
+"""Rolling with creepage and spin (docs/theory.md §7.3, §11.5), in Kalker's sign convention (`kalker`).
 
     kalker   Kalker's linear-theory coefficients C11, C22, C23 (CONTACT's table and interpolation)
     steady   the steady rolling problem in contact-fixed coordinates, Kalker's element Gauss-Seidel

@@ -1,4 +1,4 @@
-"""Compiled element loops of the steady rolling Gauss-Seidel solver (`solver.creep.steady`; theory.md §11.5, §5.3).
+"""Compiled element loops of the steady rolling Gauss-Seidel solver (`solver.creep.steady`; docs/theory.md §11.5, §5.3).
 
 Fields are (2, ny, nx) float64 arrays on the contact-fixed grid, index [k, j, i] the component k (x, y) at the
 cell (x_i, y_j); body 1 rolls in +x, so the cell upstream of (j, i) is (j, i + 1). Kernels are the dense
@@ -68,13 +68,17 @@ def _carry_down(j, i, tau, dp, status, bound, lo):
 
 
 @numba.njit(cache=True)
-def row_sweep(j, rigid, tau, dp, status, bound, disp, row_xx, row_yy, inv_dx, lo, hi, dp_start, omega):
-    """Gauss-Seidel over the contact cells of row j, from the trailing edge (lo) to the leading edge (hi - 1).
+def row_sweep(j, rigid, tau, dp, status, bound, disp, row_xx, row_yy, inv_dx, lo, hi, dp_start, omega,
+              with_flow):
+    """Gauss-Seidel over the contact cells of row j, from the trailing edge (lo) to the leading edge (hi - 1), or with
+    the material's flow, from the leading edge to the trailing one (`with_flow`: an operator with memory, whose
+    displacement at a cell depends most on the traction upstream, is then swept as a forward substitution).
 
     rigid: the rigid slip (2, ny, nx); tau, dp: traction (MPa) and its difference to the upstream cell, kept
     consistent; status: EXTERIOR / STICK / SLIP per cell (int8), updated; bound: mu p (MPa, inf for no limit);
     disp: A dp (mm) as it was when the row started; row_xx, row_yy: the in-row kernels A^xx(ox dx, 0),
-    A^yy(ox dx, 0) at index ox + nx - 1 (A^xy vanishes on a row); dp_start: dp of the row when it started.
+    A^yy(ox dx, 0) at index ox + nx - 1, ox the target minus the source column (any Toeplitz kernel, also one not
+    even in x, e.g. steady viscoelastic rolling; A^xy vanishes on a row); dp_start: dp of the row when it started.
     omega: over-relaxation factor of the stick elements (1 = plain Gauss-Seidel).
     The row's own changes are added to disp exactly, element by element; the caller carries them to the
     other rows afterwards. Returns the largest change of a traction (MPa) in the row.
@@ -83,14 +87,15 @@ def row_sweep(j, rigid, tau, dp, status, bound, disp, row_xx, row_yy, inv_dx, lo
     c0x = row_xx[nx - 1]
     c0y = row_yy[nx - 1]
     change = 0.0
-    for i in range(lo, hi):
+    for k in range(hi - lo):
+        i = hi - 1 - k if with_flow else lo + k
         if status[j, i] == EXTERIOR:
             continue
         jx = i - 1
         while jx > lo and status[j, jx] == STICK:
             jx -= 1
-        bx = (c0x - row_xx[nx - 1 + jx - i]) * inv_dx
-        by = (c0y - row_yy[nx - 1 + jx - i]) * inv_dx
+        bx = (c0x - row_xx[nx - 1 + i - jx]) * inv_dx
+        by = (c0y - row_yy[nx - 1 + i - jx]) * inv_dx
         ux = disp[0, j, i]
         uy = disp[1, j, i]
         for ii in range(lo, hi):

@@ -1,11 +1,12 @@
 """Creep-force curves: steady rolling solved over a range of creepages, each solution the warm start of the next
-(theory.md §7.3, §11.5), and the curves they are drawn against.
+(docs/theory.md §7.3, §11.5), and the curves they are drawn against.
 
 Kalker's sign convention (`solver.creep.kalker`): forces on body 1, opposing the creepages. The reference curves
 are the linear theory F = G c^2 C11 xi (and C22, C23) and the saturation model of Vermeulen & Johnson (1964):
 with t = |F_linear| / (mu Fn), |F| / (mu Fn) = t - t^2/3 + t^3/27 for t < 3 and 1 beyond.
 """
 from dataclasses import dataclass
+import time
 
 import numpy as np
 
@@ -15,13 +16,15 @@ from rollcontact.solver.creep.steady import SteadyParams, SteadyRolling, solve_s
 @dataclass
 class CreepCurve:
     """Per creepage point: creepages (n, 3) (xi, eta, phi in 1/mm), force (n, 2) N and moment (n,) N mm on body
-    1, stick_fraction (n,) (stick cells / contact cells), sweeps (n,); the last point's SteadyResult."""
+    1, stick_fraction (n,) (stick cells / contact cells), sweeps (n,); the last point's SteadyResult; the process
+    CPU time of each point's solve (n,) s."""
     creepages: np.ndarray
     force: np.ndarray
     moment: np.ndarray
     stick_fraction: np.ndarray
     sweeps: np.ndarray
     last: object
+    cpu_time: np.ndarray = None
 
 
 def creep_curve(problem: SteadyRolling, pressure, mu, creepages, *,
@@ -34,17 +37,19 @@ def creep_curve(problem: SteadyRolling, pressure, mu, creepages, *,
     creepages = np.atleast_2d(np.asarray(creepages, dtype=float))
     n = len(creepages)
     force, moment = np.zeros((n, 2)), np.zeros(n)
-    stick, sweeps = np.zeros(n), np.zeros(n, dtype=np.int64)
+    stick, sweeps, seconds = np.zeros(n), np.zeros(n, dtype=np.int64), np.zeros(n)
     previous = None
     for k, (xi, eta, phi) in enumerate(creepages):
+        c0 = time.process_time()
         if previous is not None:
             previous = previous * _parallel_ratio(creepages[k - 1], creepages[k])
         res = solve(problem, pressure, mu, xi, eta, phi, initial=previous, params=params)
+        seconds[k] = time.process_time() - c0
         force[k], moment[k] = res.force, res.moment
         stick[k] = res.stick.sum() / res.contact.sum()
         sweeps[k] = res.sweeps
         previous = res.traction
-    return CreepCurve(creepages, force, moment, stick, sweeps, res)
+    return CreepCurve(creepages, force, moment, stick, sweeps, res, seconds)
 
 
 def _parallel_ratio(before, after):
@@ -63,5 +68,5 @@ def vermeulen_johnson(linear_force_ratio):
 
 def saturation_creepage(G, c, coefficient, mu, normal_force):
     """The creepage at which the linear force G c^2 C reaches mu Fn (for spin, pass c * C23 as `coefficient`
-    to get 1/mm): CONTACT's normalising creepage (theory.md §7.3)."""
+    to get 1/mm): CONTACT's normalising creepage (docs/theory.md §7.3)."""
     return mu * normal_force / (G * c * c * coefficient)

@@ -1,4 +1,4 @@
-"""A Hertzian elliptic contact on a contact-fixed grid, for the steady rolling solver (theory.md §7.3, §7.1).
+"""A Hertzian elliptic contact on a contact-fixed grid, for the steady rolling solver (docs/theory.md §7.3, §7.1).
 
 The grid has n elements across each axis of the ellipse (dx = 2a/n along the rolling direction x, dy = 2b/n;
 or ny across y),

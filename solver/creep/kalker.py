@@ -1,4 +1,4 @@
-"""Kalker's creep coefficients C11, C22, C23 of the linear theory of steady rolling (theory.md §7.3).
+"""Kalker's creep coefficients C11, C22, C23 of the linear theory of steady rolling (docs/theory.md §7.3).
 
 Kalker's sign convention (the field's habit, used everywhere in `solver.creep`): body 1 rolls in +x over body 2,
 the creepages are the rigid slip velocities of body 1 relative to body 2 divided by the rolling speed,
@@ -12,7 +12,7 @@ with c = sqrt(a b) (a: semi-axis along the rolling direction, b: lateral), G Kal
 a <= b and by b/a for a > b; the coefficients are interpolated as in CONTACT: linearly in g between rows,
 quadratically (Lagrange through nu = 0, 0.25, 0.5) in 1/C over nu; outside the table (g < 0.1) the slender-ellipse
 asymptotes. C33 is not in that table: `C33_PUBLISHED` holds the few values of the one public transcription of
-Kalker's full table (theory.md §7.3), for comparison only.
+Kalker's full table (docs/theory.md §7.3), for comparison only.
 """
 import math
 
@@ -23,7 +23,7 @@ from rollcontact.bem.errors import InputError
 #: Poisson ratios of the table's columns.
 NU_COLUMNS = (0.0, 0.25, 0.5)
 
-#: Rows (g, C11 at nu = 0/0.25/0.5, C22 at ..., C23 at ...) for a <= b, g = a/b (theory.md §7.3).
+#: Rows (g, C11 at nu = 0/0.25/0.5, C22 at ..., C23 at ...) for a <= b, g = a/b (docs/theory.md §7.3).
 _ROWS_A_LE_B = (
     (0.1, 2.51, 3.31, 4.85, 2.51, 2.52, 2.53, 0.334, 0.473, 0.731),
     (0.2, 2.59, 3.37, 4.81, 2.59, 2.63, 2.66, 0.483, 0.603, 0.809),
@@ -49,7 +49,7 @@ _ROWS_A_GT_B = (
     (0.1, 10.7, 11.7, 12.9, 10.7, 12.8, 16.0, 12.2, 14.6, 18.0),
 )
 
-#: C33 at (a/b, nu) from the one public transcription of Kalker's full table (theory.md §7.3); not CONTACT's.
+#: C33 at (a/b, nu) from the one public transcription of Kalker's full table (docs/theory.md §7.3); not CONTACT's.
 C33_PUBLISHED = {
     (0.5, 0.0): 1.74, (0.5, 0.25): 1.93, (0.5, 0.5): 2.22,
     (1.0, 0.0): 1.21, (1.0, 0.25): 1.19, (1.0, 0.5): 1.16,
@@ -70,7 +70,8 @@ def _lagrange_inverse(values, nu):
 
 
 def _asymptotes(ratio, nu):
-    """C11, C22, C23 outside the table (g = min(a/b, b/a) < 0.1), CONTACT's slender-ellipse forms (§7.3)."""
+    """C11, C22, C23 outside the table (g = min(a/b, b/a) < 0.1), CONTACT's slender-ellipse forms
+    (docs/theory.md §7.3)."""
     if ratio <= 1.0:
         g = ratio
         c23 = math.pi * math.sqrt(g) / (3 * (1 - nu)) * (1 + nu * (math.log(16 / g) - 5))
@@ -106,7 +107,7 @@ def linear_creep_forces(a, b, G, nu, xi, eta=0.0, phi=0.0, C33=None):
     """Kalker's linear creep forces on body 1: (Fx, Fy) in N and Mz in N mm (None without C33).
 
     a, b: semi-axes (mm; a along the rolling direction); G: combined shear modulus (MPa); xi, eta
-    dimensionless, phi in 1/mm. Valid for |F| << mu Fn (full adhesion limit, theory.md §7.3).
+    dimensionless, phi in 1/mm. Valid for |F| << mu Fn (full adhesion limit, docs/theory.md §7.3).
     """
     c11, c22, c23 = kalker_coefficients(a / b, nu)
     c = math.sqrt(a * b)

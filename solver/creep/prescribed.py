@@ -1,4 +1,4 @@
-"""Steady rolling with prescribed creep forces: the creepages xi, eta solved for (theory.md §7.3, §11.5).
+"""Steady rolling with prescribed creep forces: the creepages xi, eta solved for (docs/theory.md §7.3, §11.5).
 
 Kalker's convention (`kalker`): Fx, Fy are the forces on body 1 (N), opposing the creepages; the spin phi (1/mm) is
 given. The map (xi, eta) -> (Fx, Fy) of `solve_steady` is monotone (the forces oppose the creepages) and saturates

@@ -1,11 +1,13 @@
-"""Transient rolling with creepage and spin on a world-fixed grid, from an initial state (theory.md §6, §11.5, §5.1).
+"""Transient rolling with creepage and spin on a world-fixed grid, from an initial state (docs/theory.md §6, §11.5,
+§5.1).
 
 The grid is fixed to body 2 (the substrate), its x axis along the rolling direction. Body 1's profile moves by
-`step` (mm) along x per step (the paper's Eq. 7, theory §6.1: h_k(x, y) = h(x - c_k, y), c_k = k step). In rolling,
+`step` (mm) along x per step (the paper's Eq. 7, docs/theory.md §6.1: h_k(x, y) = h(x - c_k, y), c_k = k step). In
+rolling,
 the surface material of both bodies that is in contact stays at the same world position while the contact passes
 over it (up to the creep slip itself, first order in the creepages), so the displacement difference u = u1 - u2 at a
 world-fixed element belongs to the same pair of material points at consecutive steps, and each step is Kalker's
-shift problem (theory §5.1) with the rigid slip of body 1 relative to body 2 over the step
+shift problem (docs/theory.md §5.1) with the rigid slip of body 1 relative to body 2 over the step
 
     step * (xi - phi (y - c_y), eta + phi (x - c_x + SPIN_OFFSET step))        (mm; c = (c_k, 0) the contact centre)
 
@@ -14,7 +16,7 @@ relative to body 2 per unit rolling distance, the spin about the moving contact 
 in `steady`, CONTACT's 1/6 dq). The tangential solver's slip is the substrate's relative to body 1, so this rigid
 slip enters with the opposite sign: as extra slip with the shift fixed at zero (prescribed creepages), or, with
 prescribed forces (Fx, Fy) on body 1, as the unknown rigid-shift increment dU of the force-controlled problem
-(theory §5.2: (xi, eta) = dU / step, the spin part still as extra slip). One step is
+(docs/theory.md §5.2: (xi, eta) = dU / step, the spin part still as extra slip). One step is
 `solver.rolling.coupled.solve_coupled_step`: normal then tangential problem, nested until both settle for coupled
 materials (the pressure's tangential displacement A^tz (p - p') enters the slip), the pressure warm-started from
 the previous one moved by whole cells (`stepping.shifted_field`), the contact checked to stay inside the grid.
@@ -30,12 +32,16 @@ With step = dx and uncoupled materials every step is the steady problem's one-ce
 difference, the same spin offset), so after a few contact lengths the forces converge to `solve_steady`'s;
 coupled materials converge to the coupled steady state (cases.run.creep_run alternates it with the normal problem).
 
+Viscoelastic bodies (a `memory`, solver.visco.ViscoMemory): each solve sees the history displacement of the bodies'
+element states and advances them (step 0 ends at t = 0; with `cattaneo` the tangential load at rest takes one more
+step time, so step k ends at (k + 1) dt).
+
 Results in Kalker's convention (forces and moment on body 1; the moment about the contact centre), the solver
-results in the substrate convention of theory.md §0. Units: mm, N, MPa.
+results in the substrate convention of docs/theory.md §0. Units: mm, N, MPa.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import math
 import time
 from typing import Iterator
@@ -63,7 +69,7 @@ class CreepStep:
     creepages (xi, eta, phi) of the step: the prescribed ones, or with prescribed forces (xi, eta) = dU / step (at
     step 0: zero for `rest`, the shift at rest over one step length for `cattaneo`); rigid_shift: the accumulated
     rigid slip of body 1 relative to body 2 (mm, sum of step (xi, eta)); outer iterations of the coupled loop, the
-    wall and process CPU time of the step (s).
+    wall and process CPU time of the step (s); the work the viscous dashpots of viscoelastic bodies dissipated in it.
     """
     step: int
     centre: float
@@ -76,6 +82,7 @@ class CreepStep:
     outer_iterations: int
     wall_time: float
     cpu_time: float
+    viscous_dissipation: float = 0.0      # N mm dissipated by viscoelastic bodies' dashpots in the step
     friction: object = None     # with a friction law: its solver.friction.FrictionState (local mu, slip velocity, ...)
 
     @property
@@ -92,14 +99,16 @@ def rolling_steps(distance: float, step: float) -> int:
 
 
 def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0, forces=None, initial="rest",
-               params: StepParams = StepParams(), friction=None) -> Iterator[CreepStep]:
+               params: StepParams = StepParams(), memory=None, friction=None) -> Iterator[CreepStep]:
     """Roll body 1 along +x of the world-fixed grid of `op` (bem.HalfSpaceOperator) from the initial state, in
     steps of `step` mm over at least `distance` mm (`rolling_steps`), yielding the initial state (step 0) and each
     step. profile(X, Y, centre) -> h (mm), the undeformed gap about the contact centre (solver.rolling.profiles);
     Fn (N) and mu as in `run_path`; creepages xi, eta and spin phi (1/mm), or forces = (Fx, Fy) N on body 1 in place
-    of xi, eta. friction: a friction law (solver.friction.LocalFriction, its speed the rolling speed; mu is then its
-    static coefficient): every step is solved consistently with it over the step's time step / speed, and carries its
-    FrictionState (local mu, slip velocity, temperatures). Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
+    of xi, eta; memory: the element states of viscoelastic bodies (solver.visco.ViscoMemory on op's effective pair, its
+    step time step / V), None for elastic ones; friction: a friction law (solver.friction.LocalFriction, its speed
+    the rolling speed; mu is then its static coefficient): every step is solved consistently with it over the step's
+    time step / speed, and carries its FrictionState (local mu, slip velocity, temperatures); not both (elastic bodies
+    only). Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
     the initial state, before rolling) or when the contact reaches the grid's edge, GrossSlidingError for
     |F| >= mu Fn, ConvergenceError if a solver fails."""
     n = rolling_steps(distance, step)
@@ -107,6 +116,9 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         raise InputError(f"[rolling] initial = {initial!r}: allowed values are {list(INITIAL_STATES)}")
     if not (Fn > 0 and mu > 0):
         raise InputError(f"Fn = {Fn!r} N, mu = {mu!r}: must be > 0")
+    if memory is not None and friction is not None:
+        raise InputError("roll_world: a friction law (friction) with viscoelastic bodies (memory) is not supported; "
+                         "give one of them")
     for name, v in (("xi", xi), ("eta", eta), ("phi", phi)):
         if not math.isfinite(v):
             raise InputError(f"[rolling] {name} = {v!r}: must be finite")
@@ -139,6 +151,10 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         elif load == "creep":
             F = -forces                                                       # on the substrate
             kw = dict(extra_slip=creep_slip(centre, (0.0, 0.0))) if phi != 0.0 else {}
+        if memory is not None:
+            extra_n, extra_t = memory.terms()
+            kw["extra_slip"] = extra_t if "extra_slip" not in kw else kw["extra_slip"] + extra_t
+            kw["extra_displacement"] = extra_n
         if friction is None:
             normal, tang, outer = solve_coupled_step(
                 op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal,
@@ -155,6 +171,10 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
                 previous_mu=None if previous is None else previous.friction.mu,
                 moved=(0, 0) if previous is None else (0, round((centre - previous.centre) / grid.dx)))
         check_contact_inside(normal.contact, k, (centre, 0.0))
+        viscous = 0.0
+        if memory is not None:
+            total = memory.advance(normal.pressure, tang.traction, tang.displacement)
+            tang, viscous = replace(tang, displacement=total), memory.dissipation
         tau = tang.traction
         moment = -float(((X - centre) * tau[1] - Y * tau[0]).sum() * dA)
         if load == "rest":
@@ -164,7 +184,8 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         else:
             creep = (float(tang.shift_increment[0]) / step, float(tang.shift_increment[1]) / step)
         return CreepStep(k, centre, normal, tang, -np.asarray(tang.force, dtype=float), moment, (*creep, phi),
-                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0, local)
+                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0, viscous,
+                         local)
 
     rec = solve(0, 0.0, None, "rest")
     if initial == "cattaneo":
@@ -172,6 +193,7 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         rec.outer_iterations += rest.outer_iterations
         rec.wall_time += rest.wall_time
         rec.cpu_time += rest.cpu_time
+        rec.viscous_dissipation += rest.viscous_dissipation
     cols = np.nonzero(rec.normal.contact.any(axis=0))[0]
     if cols.size and cols[-1] + math.ceil(n * step / grid.dx - 1e-9) >= grid.nx - 1:
         end, front = grid.x[-1] + grid.dx / 2, grid.x[cols[-1]] + grid.dx / 2

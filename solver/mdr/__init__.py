@@ -1,4 +1,4 @@
-"""The 1-D model of the method of dimensionality reduction (MDR) for oscillating rolling (theory.md §8, seed §2.3):
+"""The 1-D model of the method of dimensionality reduction (MDR) for oscillating rolling (docs/theory.md §8, seed §2.3):
 
     simulate    the spring-row simulation under constant Fn and Ft (`simulate_mdr`)
     step        one exact step of the spring row in plain numpy (the reference of the compiled `_kernels`)

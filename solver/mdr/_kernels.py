@@ -1,4 +1,4 @@
-"""Compiled MDR step (numba, cached): the kernels behind `solver.mdr.simulate_mdr` (theory.md §8.2).
+"""Compiled MDR step (numba, cached): the kernels behind `solver.mdr.simulate_mdr` (docs/theory.md §8.2).
 
 Numba twins of `solver.mdr.step` for the gaps g_i of the springs (the sphere's (s - centre)^2 / R, or any
 axisymmetric profile's MDR profile g(s - centre) computed by the caller; s, centre, R, d, U, anchors and bounds

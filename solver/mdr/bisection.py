@@ -1,4 +1,4 @@
-"""Shakedown limit of the 1-D MDR model by bisection in f_t = Ft/(mu Fn) (theory.md §8.2-8.3, seed Eq. 12).
+"""Shakedown limit of the 1-D MDR model by bisection in f_t = Ft/(mu Fn) (docs/theory.md §8.2-8.3, seed Eq. 12).
 
 Each probe is a full `solver.mdr.simulate_mdr` run; the result brackets the limit between a shakedown and a
 ratcheting f_t.  Units mm, N, MPa (R, W, dW in mm; E*, G* in MPa; Fn in N); f_t is dimensionless.
@@ -17,7 +17,7 @@ class LimitBracket:
     """Shakedown limit in f_t found by bisection: f_t_shakedown < limit <= f_t_ratcheting.
 
     runs: number of simulations; undecided_retries: runs repeated with doubled periods because the first
-    classification was 'undecided' (slow decay close to the limit, pitfall P12).
+    classification was 'undecided' (slow decay close to the limit, docs/theory.md P12).
     """
 
     f_t_shakedown: float
@@ -38,7 +38,7 @@ def shakedown_limit_ft(*, R, E_star, G_star, Fn, mu, W, dW, periods, f_t_lo=0.0,
     lower end up, 'ratcheting' the upper end down.  An 'undecided' probe is rerun with twice the periods
     (at most `max_period_doublings` times), then ConvergenceError.  f_t_lo must shake down and f_t_hi must
     ratchet (checked).  Stops when the bracket is narrower than f_t_tol.  Compare with
-    mdr_limits.f_t_lim(W/a, KAPPA_MDR) (seed Eq. 12 at the limit).
+    solver.mdr.limits.f_t_lim(W/a, KAPPA_MDR) (seed Eq. 12 at the limit).
     """
     common = dict(R=R, E_star=E_star, G_star=G_star, Fn=Fn, mu=mu, W=W, dW=dW, n_springs=n_springs, ds=ds)
     runs = retries = 0

@@ -1,4 +1,4 @@
-"""Exact normal and tangential answers of the MDR for any axisymmetric profile (theory.md §8.1, §11.4).
+"""Exact normal and tangential answers of the MDR for any axisymmetric profile (docs/theory.md §8.1, §11.4).
 
 For an axisymmetric profile with MDR profile g(s) (`solver.rolling.axisymmetric`) pressed by Fn onto an elastic
 half-space (contact modulus E*), the MDR is exact (Popov & Hess 2015):
@@ -130,9 +130,9 @@ class MDRTangential:
         c = self.stick_radius(f_t)
         return self.mu * self.contact.E_star / self.G_star * (float(g.mdr(self.contact.a)) - float(g.mdr(c)))
 
-    # --- oscillating rolling under constant Fn and Ft: the shakedown state of the spring row (theory §8.3) ---
+    # --- oscillating rolling under constant Fn and Ft: the shakedown state of the spring row (docs/theory.md §8.3) ---
     def shakedown_force(self, b, W) -> float:
-        """f_t of the MDR shakedown state whose stick band reaches b - W (W <= b <= a; mm): theory §8.3 for any
+        """f_t of the MDR shakedown state whose stick band reaches b - W (W <= b <= a; mm): docs/theory.md §8.3 for any
         profile. Springs of the permanently loaded band |s| <= a - W that ever slipped hold their smallest
         bound mu (E*/G*) (d - g(|s| + W)), those of the stick band |s| < c_sd = b - W hold U_sd =
         mu (E*/G*) (d - g(b)), so Ft = 2 E* mu [c_sd (d - g(b)) + int_b^a (d - g(t)) dt] and

@@ -1,29 +1,29 @@
-"""Closed forms of the MDR shakedown theory for oscillating rolling (seed Eqs. 4-5, 12-21; theory.md §8).
+"""Closed forms of the MDR shakedown theory for oscillating rolling (seed Eqs. 4-5, 12-21; docs/theory.md §8).
 
-Everything here is dimensionless (seed Eq. 9 with the correction of pitfall P3):
+Everything here is dimensionless (seed Eq. 9 with the correction of docs/theory.md P3):
 
     f_t = Ft / (mu Fn)                tangential load ratio,          0 <= f_t <= 1
     u   = U / U0,  U0 = mu E* d / G*  rigid displacement (mm / mm),    U0 = full-slip shift of Mindlin
     w   = W / a                       oscillation amplitude of the sphere centre over the Hertz radius
 
-Mapping parameter kappa (seed Eq. 13, theory §8.4):
+Mapping parameter kappa (seed Eq. 13, docs/theory.md §8.4):
 
     f_t = 1 - kappa w u_sd - (1 - u_sd)^(3/2)          equilibrium of the shaken-down state
 
-* ``KAPPA_MDR = 1.5`` is what the pure 1-D MDR derivation gives (seed Eq. 12, theory §8.3): in 1-D a spring
+* ``KAPPA_MDR = 1.5`` is what the pure 1-D MDR derivation gives (seed Eq. 12, docs/theory.md §8.3): in 1-D a spring
   that re-enters contact is unloaded and stays so while U is constant, so only the band of permanent contact
   |s| <= a - W carries force.  `solver.mdr.simulate_mdr` converges to this value.
 * ``KAPPA_PARALLEL = 1.0`` and ``KAPPA_PERPENDICULAR = 1.1`` are the seed's fits to CONTACT runs and
   experiments (seed Eq. 14) for rolling parallel / perpendicular to Ft.  They are smaller than 3/2 because
   in 3-D a point re-entering contact keeps a non-zero elastic displacement and can carry traction induced
   by its stuck neighbours, so the capacity loss is smaller than in 1-D, and it depends on the rolling
-  direction (the spindle-shaped stick zone).  They are rounded empirical values (theory §8.4: the seed's own
+  direction (the spindle-shaped stick zone).  They are rounded empirical values (docs/theory.md §8.4: the seed's own
   Fig. 4b shows ratcheting of the parallel case at f_t = 0.77, w = 0.23, exactly on the kappa = 1 limit),
   so keep a margin around f_t,lim when using them as oracles.
 
 Allowed kappa: 0 < kappa <= 3/2.  For kappa > 3/2 the limit curve f_t,lim(w) = 1 - kappa w + (kappa - 1) w^3
 is no longer monotone and becomes negative near w = 1, and the equilibrium relation is no longer monotone in
-u_sd; 3/2 is also the upper bound given by the 1-D (lens) argument of theory §8.4.  Such values are refused.
+u_sd; 3/2 is also the upper bound given by the 1-D (lens) argument of docs/theory.md §8.4.  Such values are refused.
 
 Out-of-range inputs raise `InputError` naming the parameter and the allowed range (never NaN);
 `NoShakedownError` (a subclass) is raised when a shakedown state is asked for beyond the shakedown limit.
@@ -40,10 +40,10 @@ from rollcontact.bem.errors import InputError
 
 KAPPA_PARALLEL = 1.0        # seed Eq. 14, fitted (CONTACT + experiment), rolling direction parallel to Ft
 KAPPA_PERPENDICULAR = 1.1   # seed Eq. 14, fitted (CONTACT + experiment), rolling direction perpendicular to Ft
-KAPPA_MDR = 1.5             # seed Eq. 12, pure 1-D MDR derivation (theory §8.3)
+KAPPA_MDR = 1.5             # seed Eq. 12, pure 1-D MDR derivation (docs/theory.md §8.3)
 KAPPA_MAX = 1.5             # upper end of the allowed range (see module docstring)
 
-# Seed Eqs. 20-21: regression constants C of du ~ sqrt(C u_stat(f_t)) (w - w_lim(f_t)) (theory §8.5, P13).
+# Seed Eqs. 20-21: regression constants C of du ~ sqrt(C u_stat(f_t)) (w - w_lim(f_t)) (docs/theory.md §8.5, P13).
 RATCHET_C = {"parallel": 2.0, "perpendicular": 5.0}
 SETTING_KAPPA = {"parallel": KAPPA_PARALLEL, "perpendicular": KAPPA_PERPENDICULAR}
 
@@ -91,7 +91,7 @@ def _out(arr):
 
 # ------------------------------------------------------------------------------------ static (Mindlin)
 def u_stat(f_t):
-    """Static shift u_stat = U_stat/U0 = 1 - (1 - f_t)^(2/3) (seed Eq. 4, Cattaneo-Mindlin; theory §7.2)."""
+    """Static shift u_stat = U_stat/U0 = 1 - (1 - f_t)^(2/3) (seed Eq. 4, Cattaneo-Mindlin; docs/theory.md §7.2)."""
     f = check_ft(f_t)
     return _out(1.0 - (1.0 - f) ** (2.0 / 3.0))
 
@@ -126,7 +126,7 @@ def f_t_lim(w, kappa=KAPPA_MDR):
     """Shakedown limit of the load ratio f_t,lim(w) = 1 - kappa w + (kappa - 1) w^3 (seed Eqs. 18-19).
 
     Equals f_t_equilibrium(u_lim(w), w, kappa).  kappa = 1: 1 - w (Eq. 18); kappa = 1.1: 1 - 1.1 w + 0.1 w^3
-    (Eq. 19); kappa = 3/2: pure MDR (theory §8.3).  Monotonically decreasing from 1 (w = 0) to 0 (w = 1).
+    (Eq. 19); kappa = 3/2: pure MDR (docs/theory.md §8.3).  Monotonically decreasing from 1 (w = 0) to 0 (w = 1).
     """
     ww, k = check_w(w), check_kappa(kappa)
     return _out(1.0 - k * ww + (k - 1.0) * ww ** 3)
@@ -230,13 +230,13 @@ def fit_kappa(f_t, w, u_sd) -> KappaFit:
 
 # ------------------------------------------------------------------------------------ ratcheting
 def ratcheting_increment(f_t, w, setting="perpendicular"):
-    """Seed's regression for the increment per period beyond the limit (seed Eqs. 20-21, theory §8.5).
+    """Seed's regression for the increment per period beyond the limit (seed Eqs. 20-21, docs/theory.md §8.5).
 
     du ~ sqrt(C u_stat(f_t)) (w - w_lim(f_t)), C = 2 (parallel, w_lim from Eq. 18, kappa = 1) or
     C = 5 (perpendicular, w_lim from Eq. 19, kappa = 1.1); 0 for w <= w_lim (shakedown).
     These are the seed's empirical regression fits with u_stat as regressor (its ref. [15]), dimensionally
     loose and NOT an MDR result: the pure MDR (solver.mdr) gives increments several times larger
-    (theory §8.5, pitfall P13).  Use for qualitative checks only.  "Per period" is presumed.
+    (docs/theory.md §8.5, P13).  Use for qualitative checks only.  "Per period" is presumed.
     """
     if setting not in RATCHET_C:
         raise InputError(f"setting = {setting!r}: allowed values are {sorted(RATCHET_C)}")

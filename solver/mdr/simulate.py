@@ -1,9 +1,9 @@
-"""1-D MDR simulator of oscillating rolling under constant Fn and Ft (theory.md §8.1-8.2, seed §2.3).
+"""1-D MDR simulator of oscillating rolling under constant Fn and Ft (docs/theory.md §8.1-8.2, seed §2.3).
 
 The 3-D sphere/half-space contact is replaced by a row of independent springs at world-fixed positions s_i
 (spacing ds, mm) with normal stiffness k_z = E* ds and tangential stiffness k_x = G* ds (N/mm), indented by
 the 1-D equivalent profile g(s) = (s - c_n)^2 / R (a parabola of radius R/2, seed Eq. 8 with the cumulative
-shift c_n of the sphere centre, pitfall P4).  The rolling direction does not enter: the MDR cannot tell the
+shift c_n of the sphere centre, docs/theory.md P4).  The rolling direction does not enter: the MDR cannot tell the
 parallel and perpendicular settings apart (seed §2.3), it converges to kappa = 3/2 of seed Eq. 12.
 
 Per step n (centre c_n):
@@ -27,7 +27,7 @@ periods of the triangle wave c: 0 -> +W -> 0 -> -W -> 0 in steps of dW_used = W 
 reversal points are hit exactly (4 ceil(W/dW) steps per period).  U is recorded at c = 0 after loading and
 at the end of every period and classified by `solver.rolling.shakedown.classify`.
 
-Units mm, N, MPa.  Normalisations (seed Eq. 9, pitfall P3): f_t = Ft/(mu Fn), u = U/U0 with
+Units mm, N, MPa.  Normalisations (seed Eq. 9, docs/theory.md P3): f_t = Ft/(mu Fn), u = U/U0 with
 U0 = mu E* d/G* (d, a: Hertz values; for a `profile`, its exact MDR values), w = W/a.
 
 Modules: the step is solved exactly by the compiled kernels of `solver.mdr._kernels` (used here) and by
@@ -131,7 +131,7 @@ class _LoadPath(NamedTuple):
 
 
 class LoadSchedule(NamedTuple):
-    """A prescribed load path for `simulate_mdr` (theory §11.3): per step the normal force Fn (N, > 0), the
+    """A prescribed load path for `simulate_mdr` (docs/theory.md §11.3): per step the normal force Fn (N, > 0), the
     tangential force Ft (N, signed, along the force direction), the centre c (mm, along the rolling direction)
     and the period index (0 during the loading phase); dW_used the centre step (mm, 0 without rolling)."""
 
@@ -144,7 +144,7 @@ class LoadSchedule(NamedTuple):
 
 def simulate_mdr(*, R=None, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_steps=1, n_springs=None,
                  ds=None, shakedown_tol=DEFAULT_TOL, profile=None, schedule: LoadSchedule | None = None) -> MDRResult:
-    """Run the 1-D MDR model of oscillating rolling (theory §8.2); see the module docstring.
+    """Run the 1-D MDR model of oscillating rolling (docs/theory.md §8.2); see the module docstring.
 
     R: sphere radius (mm), or profile: any axisymmetric profile of `solver.rolling.axisymmetric` (cone, power
     law, rounded flat punch), whose MDR profile g(s - c_n) then replaces (s - c_n)^2/R and whose exact MDR
@@ -156,7 +156,7 @@ def simulate_mdr(*, R=None, E_star, G_star, Fn, mu, Ft, W, dW, periods, ramp_ste
     default 4001, then ds = (a + W) / ((n_springs - 1)/2 - 1)).
     shakedown_tol: tolerance on the per-period increment |dU|/U0 passed to solver.rolling.shakedown.classify.
     schedule: a LoadSchedule that replaces the path built from Ft, W, dW, periods and ramp_steps (loads that
-    vary within each period, theory §11.3); Fn and Ft are then its means (the normalisations use them) and the
+    vary within each period, docs/theory.md §11.3); Fn and Ft are then its means (the normalisations use them) and the
     springs reach the contact radius of its largest Fn plus W. Each spring keeps its own slip memory (its
     anchor) whatever Fn does; a spring leaving contact is released and re-attaches unstretched.
     The history's 'dissipation' is the frictional work of each step (N mm): G* ds sum_i u_i (v_i - v_i'), the

@@ -1,4 +1,4 @@
-"""One step of the 1-D MDR spring row, exact, in plain numpy (solver.mdr; theory.md §8.2).
+"""One step of the 1-D MDR spring row, exact, in plain numpy (solver.mdr; docs/theory.md §8.2).
 
 Steps 1 and 3 of the MDR step (see `solver.mdr`): the approach d (mm) that carries the normal force Fn (N)
 on springs of stiffness E* ds (E* in MPa, ds in mm), and the rigid tangential displacement U (mm) of springs

@@ -1,4 +1,4 @@
-"""Compiled element loops of NormCG (solver.normal; theory.md §4.3): one pass each over the grid.
+"""Compiled element loops of NormCG (solver.normal; docs/theory.md §4.3): one pass each over the grid.
 
 The per-iteration element work of `solver.normal.solve_normal`, on flat, contiguous float64 arrays of the
 (ny, nx) grid: the projected preconditioned residual and search direction (`_direction`), the step with the

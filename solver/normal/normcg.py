@@ -1,17 +1,17 @@
-"""Frictionless normal contact on the elastic half-space: NormCG (theory.md §4.1, §4.3).
+"""Frictionless normal contact on the elastic half-space: NormCG (docs/theory.md §4.1, §4.3).
 
-Problem (theory.md §4.1), on the potential-contact grid of `op.grid`, element area dA = dx dy:
+Problem (docs/theory.md §4.1), on the potential-contact grid of `op.grid`, element area dA = dx dy:
 
     e_I = h_I - d + u_I >= 0,   p_I >= 0,   p_I e_I = 0,   u = A^zz p (+ extra displacement),
 
 with either the total force prescribed, sum_I p_I dA = Fn (the approach d is then the Lagrange multiplier
 of that constraint), or the approach d prescribed (the force is an output). Units: p in MPa, h, d, u, e
-in mm, Fn in N. Sign conventions (theory.md §0): p >= 0 is compressive, u_z > 0 is the loss of
+in mm, Fn in N. Sign conventions (docs/theory.md §0): p >= 0 is compressive, u_z > 0 is the loss of
 separation caused by deformation (into the bodies), d > 0 presses the bodies together, e is the
 deformed gap.
 
 Method: Vollebregt's NormCG (J. Comput. Phys. 257, 2014; BCCG, J. Optim. Theory Appl. 162, 2014), as
-outlined in theory.md §4.3:
+outlined in docs/theory.md §4.3:
 
 * an active set C (elements with p > 0 plus those entering); p = 0 elsewhere;
 * CG on the equations e_I = 0 for I in C, preconditioned by the Strang-circulant inverse of A^zz
@@ -58,7 +58,8 @@ class NormalParams:
     """Stopping rule of `solve_normal`.
 
     tol : the iteration stops when, after an iteration that did not change the active set C,
-          (1) rms over the grid of (p_k - p_{k-1}) <= tol * rms of p_k        (update criterion, §4.3) and
+          (1) rms over the grid of (p_k - p_{k-1}) <= tol * rms of p_k        (update criterion, docs/theory.md §4.3)
+          and
           (2) max over C of |e_I| <= tol * max over C of u_I                   (complementarity)
           hold together. u_I is the elastic displacement (mm), so (2) reads "the gap inside the contact
           is zero to tol times the peak elastic displacement" (= d for a Hertz contact). Outside C the
@@ -141,8 +142,8 @@ def _cold_start(h_eff, force, dA, E_star):
     """Initial pressure (MPa) for a prescribed force without a warm start: a Hertz-shaped estimate.
 
     With s = h - min h, the Hertz solution of a paraboloid is p ~ sqrt(t - s) on {s < t}, where
-    t = d/2 and the contact area A(t) = |{s < t}| satisfies Fn = (4/3) E* sqrt(A/pi) (2t) (theory.md
-    §7.1: Fn = (4/3) E* a d, a^2 = A/pi). The same rule is applied to any profile: t is found from the
+    t = d/2 and the contact area A(t) = |{s < t}| satisfies Fn = (4/3) E* sqrt(A/pi) (2t) (docs/theory.md
+    docs/theory.md §7.1: Fn = (4/3) E* a d, a^2 = A/pi). The same rule is applied to any profile: t is found from the
     cumulative histogram of s, then p is scaled to Fn. It is only a starting point; NormCG corrects it.
     """
     s = h_eff - h_eff.min()
@@ -163,7 +164,7 @@ def _cold_start(h_eff, force, dA, E_star):
 
 def solve_normal(op, profile, *, force=None, approach=None, initial=None, extra_displacement=None,
                  params=NormalParams()) -> NormalResult:
-    """Frictionless normal contact by NormCG (theory.md §4.3) on the grid of `op`.
+    """Frictionless normal contact by NormCG (docs/theory.md §4.3) on the grid of `op`.
 
     Parameters
     ----------
@@ -298,7 +299,7 @@ class _NormCG:
                                        not self.active.any())[0]
 
     def iterate(self):
-        """One NormCG iteration (theory.md §4.3); returns (residual, rms p) of the stopping rule."""
+        """One NormCG iteration (docs/theory.md §4.3); returns (residual, rms p) of the stopping rule."""
         self.iterations += 1
         self._direction()
         ntrunc, dp2, p2 = self._step()

@@ -1,9 +1,9 @@
-"""Quasi-static rolling on a world-fixed grid (theory.md §6), in the order of one run:
+"""Quasi-static rolling on a world-fixed grid (docs/theory.md §6), in the order of one run:
 
     profiles    undeformed gap profiles h(x, y), shifted with the sphere centre (seed Eq. 7)
-    coupled     one step: normal + tangential contact, nested when the materials are coupled (§6.2)
-    stepping    the load path (ramp, levels, oscillation) and the time stepping along it (§6.1-6.2)
-    shakedown   classification of the period-end shifts: shakedown, ratcheting, undecided (§8.3)
+    coupled     one step: normal + tangential contact, nested when the materials are coupled (docs/theory.md §6.2)
+    stepping    the load path (ramp, levels, oscillation) and the time stepping along it (docs/theory.md §6.1-6.2)
+    shakedown   classification of the period-end shifts: shakedown, ratcheting, undecided (docs/theory.md §8.3)
 
 Units: mm, N, MPa.
 """

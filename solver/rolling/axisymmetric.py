@@ -1,4 +1,4 @@
-"""Axisymmetric gap profiles h(r) beyond the sphere, with their MDR profiles g(s) (theory.md §8.1, §11.4).
+"""Axisymmetric gap profiles h(r) beyond the sphere, with their MDR profiles g(s) (docs/theory.md §8.1, §11.4).
 
 Each profile is a callable profile(X, Y, centre) -> h (mm), like those of `solver.rolling.profiles`, so the
 rolling solver takes it as it is; r is the distance from the centre. Each also gives the MDR (method of
@@ -10,7 +10,7 @@ tangential answers. Lengths in mm, angles in degrees.
     PowerProfile(n, R)            h = r^n / (n R^(n-1))            g = kappa_n |s|^n / (n R^(n-1)),
                                   kappa_n = sqrt(pi) Gamma(n/2 + 1) / Gamma(n/2 + 1/2)   (n = 2: sphere)
     RoundedFlatProfile(b, R)      h = 0 for r <= b, (r - b)^2/(2R) beyond (a flat punch of radius b whose edge
-                                  is rounded with radius R, to the leading order of the circle, theory §11.4)
+                                  is rounded with radius R, to the leading order of the circle, docs/theory.md §11.4)
                                   g = (|s|/R) [sqrt(s^2 - b^2) - b arccos(b/|s|)] for |s| > b, else 0
 
 The rounded flat punch's g follows from int_b^s (r - b)/sqrt(s^2 - r^2) dr = sqrt(s^2 - b^2) - b arccos(b/s);

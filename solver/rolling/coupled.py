@@ -1,4 +1,4 @@
-"""One step of normal + tangential contact for coupled materials (theory.md §6.2 step 5).
+"""One step of normal + tangential contact for coupled materials (docs/theory.md §6.2 step 5).
 
 For beta != 0 (dissimilar materials, `op.coupled` True) the pressure displaces the surface tangentially
 (A^tz) and the tractions displace it normally (A^zt). Panagiotopoulos' process alternates the two
@@ -12,7 +12,7 @@ contraction for |beta| mu well below 1 (Kalker 1990, §5; CONTACT user guide, "s
 For uncoupled materials (beta = 0 or below the operator's threshold) one normal and one tangential solve
 are exact ("Johnson's process") and no coupling product is formed.
 
-Units: mm, N, MPa. Signs as in theory.md §0.
+Units: mm, N, MPa. Signs as in docs/theory.md §0.
 """
 from dataclasses import replace
 
@@ -26,7 +26,7 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
                        coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None,
-                       initial_traction=None, initial_region=None):
+                       extra_displacement=None, initial_traction=None, initial_region=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -49,6 +49,9 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     extra_slip : (2, ny, nx) mm, a given slip of the step added to the tangential problem's (solve_tangential's
         `extra_slip`), e.g. the rigid creep slip of a rolling step (solver.creep.world); it is not part of the
         returned `displacement`.
+    extra_displacement : (ny, nx) mm, a given normal displacement of the step added to the normal problem's
+        (solve_normal's `extra_displacement`), e.g. the history displacement of viscoelastic bodies (solver.visco); it
+        is part of the returned NormalResult's `displacement`.
     initial_traction : (2, ny, nx) MPa, a warm start of the tangential solve (default: the previous traction), e.g.
         the last iterate of a friction law's iteration (solver.friction.transient). Only the start changes.
     initial_region : (ny, nx) int8, the stick/slip division of the solve that gave `initial_traction`
@@ -76,8 +79,10 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     if (F is None) == (shift is None):
         raise InputError("solve_coupled_step: give exactly one of F = (Fx, Fy) N or shift = (dUx, dUy) mm")
     given = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
+    given_normal = None if extra_displacement is None else np.asarray(extra_displacement, dtype=float)
     if not op.coupled:
-        normal = solve_normal(op, profile, force=Fn, initial=initial_p, params=normal_params)
+        normal = solve_normal(op, profile, force=Fn, initial=initial_p, extra_displacement=given_normal,
+                              params=normal_params)
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
                                 initial=initial_traction, previous_region=initial_region, params=tangential_params)
         if given is not None:
@@ -90,8 +95,9 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     change = np.inf
     n_products = t_products = t_steps = 0
     for outer in range(1, max_outer + 1):
+        coupling = op.normal_from_tangential(tau[0], tau[1])
         normal = solve_normal(op, profile, force=Fn, initial=p_guess,
-                              extra_displacement=op.normal_from_tangential(tau[0], tau[1]),
+                              extra_displacement=coupling if given_normal is None else coupling + given_normal,
                               params=normal_params)
         extra = op.tangential_from_pressure(normal.pressure - p_prev)
         if given is not None:

@@ -15,7 +15,7 @@ from rollcontact.bem.errors import InputError
 
 @dataclass(frozen=True)
 class QuadricProfile:
-    """h = x^2/(2 Rx) + y^2/(2 Ry) about the sphere centre (theory.md §6.1, seed Eq. 6)."""
+    """h = x^2/(2 Rx) + y^2/(2 Ry) about the sphere centre (docs/theory.md §6.1, seed Eq. 6)."""
 
     Rx: float
     Ry: float

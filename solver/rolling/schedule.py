@@ -1,4 +1,4 @@
-"""Loads that oscillate within each period: the load schedule of a path (theory.md §11.2-11.3).
+"""Loads that oscillate within each period: the load schedule of a path (docs/theory.md §11.2-11.3).
 
 A period is the rolling period when the sphere rolls (4 ceil(W/dW) steps, solver.rolling.stepping), or
 `steps_per_period` steps at rest when it does not. At step k = 1..N of a period the rolling phase is

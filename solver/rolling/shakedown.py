@@ -1,21 +1,21 @@
-"""Classification of an oscillating-rolling run: shakedown, ratcheting, undecided (theory §6.2, §8.3).
+"""Classification of an oscillating-rolling run: shakedown, ratcheting, undecided (docs/theory.md §6.2, §8.3).
 
 Model-independent: it only sees the rigid displacement U recorded at the same phase of the oscillation at
 the end of each period, so the 1-D MDR model (solver.mdr) and the 3-D stepping solver share it.
 
 Input: U_period_end[k] (mm), k = 0 .. P, index 0 = after the loading phase (before the first period),
-index k = end of period k; U0 = mu E* d / G* (mm), the normalisation of seed Eq. 9 (pitfall P3).
+index k = end of period k; U0 = mu E* d / G* (mm), the normalisation of seed Eq. 9 (docs/theory.md P3).
 Increments per period: du_k = (U_k - U_{k-1}) / U0, k = 1 .. P.
 
 Criteria (tolerances are parameters of `classify`):
-* 'shakedown'   : the last increment |du_P| < tol (default 1e-4, theory §6.2).  periods_to_shakedown =
+* 'shakedown'   : the last increment |du_P| < tol (default 1e-4, docs/theory.md §6.2).  periods_to_shakedown =
                   the smallest n such that |du_k| < tol for every k > n (0: no period slipped by tol or more);
                   u_sd = U_P / U0.  A ratcheting run whose increment is below tol cannot be told apart from
                   shakedown at this tol: tol is the resolution of the classification.
 * 'ratcheting'  : |du_P| >= tol and the increments have settled: |du_P - du_{P-1}| <= settle_rtol |du_P|
                   (default 2 %) over the last `settle_periods` (default 2) consecutive pairs.  du = du_P.
 * 'undecided'   : neither, i.e. increments above tol that still change by more than settle_rtol per period
-                  (typically a slow decay near the shakedown limit, pitfall P12), or too few periods to
+                  (typically a slow decay near the shakedown limit, docs/theory.md P12), or too few periods to
                   judge.  The message says so, and, for a geometric decay, estimates how many more periods
                   would bring the increment below tol.
 * 'cyclic_slip' : by `cyclic_slip`, for a run whose loads vary within the period: 'shakedown' by U, but the

@@ -1,6 +1,6 @@
-"""Quasi-static time stepping of oscillating rolling on a world-fixed grid (theory.md §6).
+"""Quasi-static time stepping of oscillating rolling on a world-fixed grid (docs/theory.md §6).
 
-One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
+One step n, as in docs/theory.md §6.2 (Kalker 1990; CONTACT's nested iteration):
 
     1. h_n = the undeformed profile shifted to the current sphere centre c_n (seed Eq. 7, any direction);
     2. normal problem with Fn (constant, or the step's Fn of an oscillating load), warm-started from p_{n-1}
@@ -8,19 +8,22 @@ One step n, as in theory §6.2 (Kalker 1990; CONTACT's nested iteration):
     3. bound g = mu p_n; tangential shift problem with the force F_n and the previous traction
        tau_{n-1} as memory                                                  -> tau_n, dU_n; U_n = U_{n-1} + dU_n;
     4. coupled materials only: repeat 2-3 with the coupling terms until both settle (solver.rolling.coupled).
+    With viscoelastic bodies (a `memory`, solver.visco.ViscoMemory) steps 2-3 see the history displacement of the
+    bodies' element states (the normal problem as an extra displacement, the tangential one the change of its
+    tangential part as extra slip), and the states then take the step's tractions.
 
 The path is prescribed: a loading phase (Fn alone, then the tangential force in `ramp_steps` increments,
 then any further force levels) followed by `periods` triangle-wave periods of the centre (loads that oscillate
 within each period: solver.rolling.schedule; the frictional work of each step: solver.rolling.energy),
 0 -> +W -> 0 -> -W -> 0, in steps of W/ceil(W/dW) along the rolling direction. Rolling is pure rolling of a
-rigid sphere: only the profile moves, there is no rigid creepage (theory §5.1 note v).
+rigid sphere: only the profile moves, there is no rigid creepage (docs/theory.md §5.1 note v).
 
 Units mm, N, MPa. U is the rigid shift of the sphere relative to the substrate far field, so that
-U.F > 0 under a steady force (theory §0).
+U.F > 0 under a steady force (docs/theory.md §0).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 import time
 from typing import Iterator
@@ -67,7 +70,8 @@ class LoadPath:
 def build_path(*, force, ramp_steps=1, levels=(), rolling_direction=(1.0, 0.0), amplitude=0.0,
                max_step=0.2, periods=0, normal_force=None, oscillation: LoadOscillation | None = None,
                step_time=None) -> LoadPath:
-    """Loading phase then oscillation (theory §6.1), with loads that may oscillate within each period (§11.2-11.3).
+    """Loading phase then oscillation (docs/theory.md §6.1), with loads that may oscillate within each period
+    (docs/theory.md §11.2-11.3).
 
     force: final tangential force vector (N) of the ramp; levels: further force vectors (N), each reached
     in `ramp_steps` equal increments (unloading, reversal); amplitude W and max_step dW in mm.
@@ -201,20 +205,24 @@ class StepRecord:
     outer_iterations: int
     wall_time: float
     dissipation: float = 0.0      # frictional work of the step (N mm), solver.rolling.energy.frictional_work
+    viscous_dissipation: float = 0.0   # work the viscous dashpots of viscoelastic bodies dissipated (N mm)
+    memory_states: dict | None = None  # the viscoelastic element states after the step (MPa), by name
     friction: object = None       # with a friction law: its solver.friction.FrictionState (local mu, slip velocity)
 
 
 def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepParams(),
-             state: StepState | None = None, friction=None) -> Iterator[StepRecord]:
+             state: StepState | None = None, memory=None, friction=None) -> Iterator[StepRecord]:
     """Step along `path` from `state` (default: unloaded), yielding one StepRecord per step.
 
     op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.rolling.profiles;
     Fn (N) the normal force, constant unless the path carries one per step (`path.normal_forces`, checked here
     before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
-    carries the frictional work of its step (solver.rolling.energy.frictional_work). friction: a friction law
-    (solver.friction.LocalFriction; mu is then its static coefficient): each step is solved consistently with it
-    (solver.friction.transient.friction_step, the slip velocity over path.step_time) and its record carries the
-    FrictionState, its state the local coefficient. Raises ContactEdgeError if
+    carries the frictional work of its step (solver.rolling.energy.frictional_work). memory: the element states of
+    viscoelastic bodies (solver.visco.ViscoMemory, of op's effective pair and path.step_time; restored to `state` by
+    the caller), None for elastic bodies. friction: a friction law (solver.friction.LocalFriction; mu is then its
+    static coefficient): each step is solved consistently with it (solver.friction.transient.friction_step, the
+    slip velocity over path.step_time) and its record carries the FrictionState, its state the local coefficient;
+    not with `memory` (InputError). Raises ContactEdgeError if
     the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
     solver fails.
     """
@@ -222,6 +230,9 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
         raise InputError(f"load.Fn = {Fn} N: must be > 0")
     if not (mu > 0):
         raise InputError(f"load.mu = {mu}: must be > 0")
+    if memory is not None and friction is not None:
+        raise InputError("run_path: a friction law (friction) with viscoelastic bodies (memory) is not supported; "
+                         "give one of them")
     if path.normal_forces is not None:
         check_schedule(path.normal_forces, path.forces, mu)
     X, Y = op.grid.mesh()
@@ -241,10 +252,12 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             guess = shifted_field(state.pressure, *cells)
         Fn_n = Fn if path.normal_forces is None else path.normal_forces[n]
         if friction is None:
+            extra_n, extra_t = (None, None) if memory is None else memory.terms()
             normal, tangential, outer = solve_coupled_step(
                 op, h, Fn_n, path.forces[n], state.pressure, state.traction, mu=mu,
                 normal_params=params.normal, tangential_params=params.tangential,
-                coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess)
+                coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess,
+                extra_slip=extra_t, extra_displacement=extra_n)
             local = None
         else:
             normal, tangential, outer, local = friction.step(
@@ -255,11 +268,17 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
                                    **last.warm_start(guess)),
                 op=op, dt=path.step_time, previous_mu=state.mu, moved=cells)
         check_contact_inside(normal.contact, n, centre)
+        viscous, states = 0.0, None
+        if memory is not None:
+            total = memory.advance(normal.pressure, tangential.traction, tangential.displacement)
+            tangential = replace(tangential, displacement=total)
+            viscous, states = memory.dissipation, memory.states()
         state = StepState(n, normal.pressure, tangential.traction,
                           state.rigid_shift + tangential.shift_increment, normal.approach,
                           None if local is None else local.mu)
         work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
-        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, local)
+        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, viscous, states,
+                         local)
 
 
 def shifted_field(field, rows, cols):

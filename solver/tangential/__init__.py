@@ -1,4 +1,4 @@
-"""Kalker's quasi-static transient ("shift") problem with a prescribed tangential force (theory.md §5).
+"""Kalker's quasi-static transient ("shift") problem with a prescribed tangential force (docs/theory.md §5).
 
 `shift` is the entry point (`solve_tangential`); the private modules are its iteration (`_tangcg`), the linearised
 problem on a fixed stick/slip division (`_linearised`) and its preconditioner (`_preconditioner`), the division

@@ -1,15 +1,15 @@
 """Shared parts of the tangential solver's element loops (`solver.tangential`): the numba decorator and the
 magnitude of a traction or slip, with the conventions of all the kernels.
 
-The kernels, compiled with numba (cache=True), live by idea in `_tangential_division` (stick/slip division,
-shift fit, releases), `_tangential_cg` (residual, curvature operator and vector operations of the linearised
-problem) and `_tangential_moves` (the step back onto the discs, the force restoration and the turns of
+The kernels, compiled with numba (cache=True), live by idea in `_division` (stick/slip division,
+shift fit, releases), `_linearised` (residual, curvature operator and vector operations of the linearised
+problem) and `_moves` (the step back onto the discs, the force restoration and the turns of
 reversed slips). All fields are (ny, nx) or (2, ny, nx) float64 arrays on the grid; `region` is int8 with
 0 = exterior (bound g = 0), 1 = stick (|tau| < g), 2 = slip (|tau| = g). Tractions and bounds in MPa,
 displacements and slips in mm. Nothing here allocates a grid-sized array; every kernel writes into buffers
 owned by the caller.
 
-Notation (theory.md §5): w = A(tau - tau') + extra slip (mm), dU the rigid-shift increment (mm),
+Notation (docs/theory.md §5): w = A(tau - tau') + extra slip (mm), dU the rigid-shift increment (mm),
 s = w - dU the slip of the step, n = tau/|tau| and t = (-n_y, n_x) in slip elements. `classify` stores
 n of the slip elements in a (2, ny, nx) buffer `nrm` that the kernels of the same iteration read (one
 square root per element and iteration instead of one per kernel); entries outside the slip area are not used.

@@ -1,4 +1,4 @@
-"""Placing a traction field on the Coulomb discs and the force constraint (theory.md §5).
+"""Placing a traction field on the Coulomb discs and the force constraint (docs/theory.md §5).
 
 Used by the tangential solver (`solver.tangential`): the start of a step (`start_traction`: the Euclidean
 projection `project_on_force`, or `place_on_force` when the previous division is given), and the restoration
@@ -32,7 +32,7 @@ def force_projection_eval(y, g, lx, ly, tau_out, region):
     proj is the radial projection onto the disc |tau_I| <= g_I, or, where region (int8, same shape as g;
     a (1, 1) array for none) is 2, onto its rim |tau_I| = g_I (slip elements stay on their bound).
     psi = sum_I h(y_I + lambda) with h(z) = |z|^2/2 - dist(z, disc)^2/2 (disc) or g|z| (rim), convex
-    functions whose gradients are the projections, and J = sum of the projection Jacobians (theory §5:
+    functions whose gradients are the projections, and J = sum of the projection Jacobians (docs/theory.md §5:
     used to put the traction on the force constraint).
     """
     ny, nx = g.shape

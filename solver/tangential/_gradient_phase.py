@@ -1,5 +1,5 @@
 """The cycling safeguard of the tangential solver (`solver.tangential._tangcg`, safeguard 1): steps of the accelerated
-projected gradient method on one step's convex program (theory §5.5), which never raise the energy and so leave
+projected gradient method on one step's convex program (docs/theory.md §5.5), which never raise the energy and so leave
 any cycle of the active-set iteration.
 
 Tractions MPa, displacements mm; `it` is the `ProjectedTangCG` iteration whose workspace is used.
@@ -13,13 +13,13 @@ from rollcontact.solver.tangential import _force_projection as FP
 
 def gradient_phase(it, n):
     """n steps (one product each) of the accelerated projected gradient method (FISTA with adaptive restart,
-    theory §5.5) on the step's convex program, from the best exact iterate: tau <- P(y - grad(y)/L) with P
+    docs/theory.md §5.5) on the step's convex program, from the best exact iterate: tau <- P(y - grad(y)/L) with P
     the Euclidean projection onto the discs (and the force, `FP.project_on_force`), L = `op.tangential_norm`
     and y the extrapolated point. The energy never rises (a step that would raise it restarts the momentum
-    instead), so it leaves any cycle of the active-set iteration. It converges slowly (theory §5.5), but
+    instead), so it leaves any cycle of the active-set iteration. It converges slowly (docs/theory.md §5.5), but
     identifies the division: from a state at f_t = 0.95, the load f_t = 0.98 turned by 2 rad (217^2) cycled
-    at an energy 6e-5 above the minimum for 500 products; from the plain start, 40 gradient steps and CG
-    converged in 65 products (that solve now takes 117 with the safeguard's stall of 20 and 20 steps).
+    at an energy 6e-5 above the minimum for 500 products without it; from the plain start, 40 gradient steps
+    and CG converge in 65 products, and with the safeguard's stall of 20 products and 20 steps in 117.
     Leaves u = A tau exact; the CG buffers serve as scratch."""
     ws, g, dU = it.ws, it.g, it.dU
     tau, u, u_prev = ws.tau, ws.u, ws.u_prev

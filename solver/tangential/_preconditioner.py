@@ -19,15 +19,13 @@ with Pi the deflation of the force constraint (prescribed force only). Two forms
   coefficient), W_l = sqrt(w_l) with w_l hat functions in log(1 + kappa/a_tt) (stick elements and slip
   elements with kappa = 0 have w_0 = 1); above the last level the weight passes to D = w_diag/(a_tt + kappa)
   over BLEND. The two-term form weights the smooth residuals of slip elements with kappa ~ a_tt by
-  D ~ 1/(4 a_tt), far above the inverse symbol of A: on wide slip rings these modes were badly conditioned.
-  Measured on the Cattaneo scene when the level was introduced (2026-11-23, before the lagged projected steps of
-  `solver.tangential._tangcg`, which lowered every count; benchmarks/tangential_cattaneo.py): warm
-  steps after a load / profile change 17 / 21, 22 / 26, 28 / 37 products at 109^2 / 217^2 / 511^2 (two-term form:
-  22 / 27, 31 / 40, 59 / 83), cold 26 / 34 / 38 (27 / 37 / 54), for one more circulant (a quarter of a product) per
-  iteration; on 109^2 that did not pay in time, so the level is used from 217^2 on (MIN_CONTACT_ELEMENTS, where
-  the measured times are given). A third level (kappa = 64 a) helped only at f_t = 0.999 (-8 and -10 products
-  at 217^2 and 511^2, elsewhere within +-7) for another quarter; on 55^2 (1801 contact elements) the shifted
-  level gained nothing.
+  D ~ 1/(4 a_tt), far above the inverse symbol of A, and conditions these modes badly on wide slip rings; the
+  shifted level takes them. On the Cattaneo scene (benchmarks/tangential_cattaneo.py) it needs a quarter to a
+  half fewer products in warm steps at 217^2 and 511^2 (counted without the lagged projected steps of
+  `solver.tangential._tangcg`, which lower every count: after a load / profile change 22 / 26 and 28 / 37
+  against 31 / 40 and 59 / 83 with the two-term form), for one more circulant (a quarter of a product) per
+  iteration; on smaller contacts that does not pay in time (MIN_CONTACT_ELEMENTS). A third level
+  (kappa = 64 a_ref) helps only at f_t = 0.999 and is not used.
 
 Both are symmetric in r and positive definite (sums of W M W with M positive definite, D >= 0), so CG applies
 unchanged.
@@ -45,10 +43,10 @@ LEVELS = (0.0, 4.0)
 #: width, in log(1 + kappa/a_tt), over which the last level hands the weight to the diagonal.
 BLEND = 1.4
 #: the shifted levels (l >= 1) are used only on contacts of at least this many elements (a/dx ~ 70). Each level
-#: costs about a quarter of a product per iteration; measured single-thread time, shifted / two-term form
-#: (2026-11-23, benchmarks/tangential_cattaneo.py): Cattaneo 217^2 (28849 contact elements) cold 1.07, warm load 0.81, profile 0.72, and
-#: 511^2 about 0.7 / 0.5 / 0.5; but 109^2 (7221) cold 1.20, warm 0.93-0.96, and a coupled step at a/dx = 40
-#: (about 5000) 1.09-1.17, with 5-25 % fewer products; on 55^2 (1801) no fewer products at all.
+#: costs about a quarter of a product per iteration. Single-thread time, shifted / two-term form, on the Cattaneo
+#: scene (benchmarks/tangential_cattaneo.py): 217^2 (28849 contact elements) cold 1.07, warm load 0.81, profile
+#: 0.72; 511^2 about 0.7 / 0.5 / 0.5; but 109^2 (7221) cold 1.20, warm 0.93-0.96, and a coupled step at
+#: a/dx = 40 (about 5000) 1.09-1.17, with 5-25 % fewer products; on 55^2 (1801) no fewer products at all.
 MIN_CONTACT_ELEMENTS = 16000
 _P = tuple(math.log1p(x) for x in LEVELS)
 _N = len(LEVELS)
@@ -59,7 +57,7 @@ _jit = nb.njit(cache=True, nogil=True, fastmath=False)
 @nb.njit(cache=True, inline="always")
 def a_tt(nrm, axx, ayy, j, i):
     """Self coefficient along the slip tangent t = (-n_y, n_x) of element (j, i): t^T diag(a_xx, a_yy) t
-    (a copy lives in `_tangential_cg`: numba's cache is per file)."""
+    (a copy, `_linearised._a_tt`, lives there: numba's cache is per file)."""
     return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
 
 

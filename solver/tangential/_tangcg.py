@@ -1,5 +1,5 @@
-"""The iteration of the tangential solver: projected TangCG on one step (the method, its choices and their
-measured effect are described in `solver.tangential`).
+"""The iteration of the tangential solver: projected TangCG on one step (the problem, the method's three main
+choices and the stopping criterion are described in `solver.tangential.shift`).
 
 `ProjectedTangCG` owns the buffers of one solve (`Workspace`) and the state of the iteration: the stick/slip
 division, the CG recurrence, the force constraint and its multiplier dU, the exact re-synchronisations of
@@ -7,6 +7,46 @@ u = A tau, and the safeguards against cycling. One pass of `run` is
 
     evaluate (division, shift fit, residual; releases and turns)  ->  safeguards  ->  re-synchronise or accept
     ->  one preconditioned CG step (one product), with projection events.
+
+After each CG step, stick elements that leave their disc are projected radially onto it and become slip
+(many changes per iteration, as in BCCG / NormCG); slip elements whose slip turns along the traction
+(s.n > 0) are released to stick, or, when that slip exceeds 2 a_self g (more than the element's own traction
+can undo), their traction is turned against the slip by the step that minimises the energy along the turns
+(`ProjectedTangCG.turn_reversed`); slip elements are renormalised to |tau| = g, and the force is
+restored by a uniform shift of the stick tractions wherever u is then recomputed exactly; the CG recurrence
+restarts after any change of the division. The projected gradient method (docs/theory.md §5.5) is simpler but needs
+thousands of products on these problems (it serves only as the cycling safeguard below); Gauss-Seidel (docs/theory.md §5.3)
+is sequential and grows with the grid.
+
+Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (two on contacts of 16000
+elements and more, a quarter of a product each); the element loops are numba kernels
+(`solver.tangential._moves`, `solver.tangential._preconditioner`) on preallocated buffers. The displacement
+u = A tau is carried along (u += alpha A v); local corrections (renormalisation, projection) are added with
+the self coefficients only, and u is recomputed exactly (one extra `op.tangential`) after steps that changed
+the division by projection and always before convergence is accepted. While the division is being
+identified (the previous step projected elements) the next step is a lagged projected step
+(`ProjectedTangCG.lagged_step`: along the preconditioned residual with the previous exact step
+length, then u exactly), one product where an exact step and its re-synchronisation take two; it is undone,
+and not tried again in the solve, if it raised the energy. `TangentialResult.iterations` counts every
+`op.tangential` call of the solve (including the product A tau' and the re-synchronisations): the cost in
+convolution pairs.
+
+Safeguards: a slip traction may turn by at most MAX_TURN g per iteration (trust region of the linearised
+rotation). When no stick element is left to restore the force (f_t -> 1), the slip tractions are turned on
+their rims (`_force_projection.project_on_force` with the region; the plain Euclidean projection would pull
+them all inside their discs, into stick, and the division would collapse) and the CG recurrence restarts;
+when no element is left in stick (stick zone below one element), the reported dU is the displacement of the
+sub-element stick point (`_stick_point_shift`). The active-set iteration is not monotone in the energy
+(projection events, releases) and can cycle (cold solves close to the bound on fine grids, warm starts far
+from a load turned near the bound): when the best exact residual has not halved for STALL_PRODUCTS products,
+GRADIENT_PRODUCTS steps of the accelerated projected gradient method (docs/theory.md §5.5; monotone in the energy, so
+it leaves any cycle) run from the best exact iterate, and CG resumes from there
+(`ProjectedTangCG.gradient_phase`). When an exact re-synchronisation finds the residual far above the
+tolerance (drift of the self-coefficient updates on dense slip areas), u is kept exact from then on. One
+early re-synchronisation, when the residual first falls below SYNC_EARLY tol, removes the drift of the large
+early moves without restarting the recurrence, so that the final check rarely fails.
+Product memo: A tau' is taken from the previous solve when tau' is its traction (rolling), see
+`previous_displacement`.
 
 Units: tractions and bounds MPa, displacements and slips mm, forces as sums of tractions over the elements
 (MPa x elements).
@@ -43,12 +83,12 @@ GRADIENT_PRODUCTS = 20
 SYNC_JUMP = 1e4
 #: One early exact re-synchronisation when the residual first falls below SYNC_EARLY tol: the drift of the
 #: self-coefficient updates made in the large early moves is then removed while the CG recurrence continues,
-#: so the final check usually passes at once (paper rolling: 26 -> 22 products per ratcheting step).
+#: so the final check usually passes at once (paper rolling: 22 products per ratcheting step, 26 without it).
 SYNC_EARLY = 1e4
 #: Lagged steps (`ProjectedTangCG.lagged_step`) continue while each lowers the residual below LAG_RHO times the
 #: residual at the previous one (benchmarks/tangential_fuzz.py, 55^2: 0.3 / 0.5 / 0.7 / none; 0.7 kept the
-#: Cattaneo counts of no limit and cut chains of lagged steps that clip the same 1-7 elements in turn:
-#: warm max 61 -> 26).
+#: Cattaneo counts of no limit and cuts chains of lagged steps that clip the same 1-7 elements in turn:
+#: warm max 26 products, 61 without a limit).
 LAG_RHO = 0.7
 
 
@@ -273,9 +313,9 @@ class ProjectedTangCG:
         projected = False
         # The renormalisation moved the force by second-order amounts. It is put back only where u is then
         # recomputed exactly (here after a projection event, and before the early and final
-        # re-synchronisations). Restoring it after every step cost a re-synchronisation and a restart per step
-        # when no stick element is left (the rims must turn: f_t = 0.999, 43 -> 21 products at 217^2; other
-        # counts unchanged). In between, the iterate misses the force by the renormalisations since.
+        # re-synchronisations). Restoring it after every step would cost a re-synchronisation and a restart per
+        # step when no stick element is left (the rims must turn: f_t = 0.999 at 217^2 takes 43 products that
+        # way, 21 this way). In between, the iterate misses the force by the renormalisations since.
         exact_step = self.exact and dmax > 0.0
         if self.force_mode and (n_clip > 0 or exact_step):
             # with no stick element left to carry the force the slip tractions turn on their rims: a turn of
@@ -296,13 +336,14 @@ class ProjectedTangCG:
         every step restarts the recurrence anyway. It is the expansion step of Dostal's MPRGP, with the
         lagged Cauchy length of projected steepest descent for its fixed length. Not monotone: a step that
         raised the energy is undone (its product is lost) and lagged steps end for the solve (fuzz campaign,
-        55^2 near_bound: max 72 -> 52 products with this check).
+        55^2 near_bound: max 52 products with this check, 72 without).
 
-        Cattaneo products (55^2 / 109^2 / 217^2 / 511^2; benchmarks/tangential_cattaneo.py): cold 22 / 27 / 34 /
-        38 -> 18 / 21 / 26 / 30, warm load 15 / 22 / 22 / 28 -> 15 / 19 / 19 / 22, warm profile 20 / 27 / 26 / 37
-        -> 19 / 22 / 21 / 31. Measured and not kept: 0.7 or 1.4 times the lagged length (511^2 cold 283 and 55),
-        the exact minimiser along the step actually taken (Cauchy-Barzilai-Borwein; 511^2 load 29), lagged
-        steps only while at least 8 or 32 elements are clipped (no better; 32: 511^2 cold 71)."""
+        Cattaneo products (55^2 / 109^2 / 217^2 / 511^2; benchmarks/tangential_cattaneo.py), with lagged steps
+        and without: cold 18 / 21 / 26 / 30 and 22 / 27 / 34 / 38, warm load 15 / 19 / 19 / 22 and
+        15 / 22 / 22 / 28, warm profile 19 / 22 / 21 / 31 and 20 / 27 / 26 / 37. Alternatives that do worse:
+        0.7 or 1.4 times the lagged length (511^2 cold 283 and 55), the exact minimiser along the step actually
+        taken (Cauchy-Barzilai-Borwein; 511^2 load 29), lagged steps only while at least 8 or 32 elements are
+        clipped (no better; 32: 511^2 cold 71)."""
         ws, g = self.ws, self.g
         tau, u, region = ws.tau, ws.u, ws.region
         ws.v[...] = tau
@@ -339,10 +380,10 @@ class ProjectedTangCG:
         slope s.d is exact. While k^2 <= DENSE_TURNS N, d.Ad is summed from the turned elements' dense influence
         block (`op.tangential_block`) and u is updated by the self coefficients; that curvature leaves out the
         terms of the stick shift (of the order of (sum d)^2 / n_stick), so the step may raise the energy
-        slightly (a review counted 24 such dense turns in 560 fuzz cases, the largest rise 1.1e-3 of the energy,
-        with the slope of the turned elements alone; the cycling safeguard covers the rest). Above it one product
-        A d gives the exact curvature and the exact update of u; taking the product always cost 0.9 products and
-        10 % of the time per ratcheting step of the paper scenes. With no stick element left, the force is
+        slightly (24 such dense turns in the 560 cases of benchmarks/tangential_fuzz.py, the largest rise 1.1e-3
+        of the energy, with the slope of the turned elements alone; the cycling safeguard covers the rest). Above it one product
+        A d gives the exact curvature and the exact update of u; taking the product always would cost 0.9 products
+        and 10 % of the time per ratcheting step of the paper scenes. With no stick element left, the force is
         restored by turning the rims (`FP.restore_force`). Re-classifies the iterate when anything moved. Returns
         the number of turned elements."""
         ws, g, dU, axx, ayy = self.ws, self.g, self.dU, self.axx, self.ayy

@@ -1,4 +1,4 @@
-"""Kalker's quasi-static transient ("shift") problem on the world-fixed grid (theory.md §5).
+"""Kalker's quasi-static transient ("shift") problem on the world-fixed grid (docs/theory.md §5).
 
 One step n -> n+1. Known: the previous traction tau' (2, ny, nx) in MPa, the traction bound
 g = mu p (ny, nx) in MPa (zero outside the contact). Unknown: the traction tau (zero where g = 0) and the
@@ -7,85 +7,38 @@ rigid-shift increment dU (2,) in mm. With the slip of the step
     s = A (tau - tau') + e - dU                                   (e = extra_slip, e.g. A^tz (p - p'))
 
 Coulomb's law holds per element: stick |tau| <= g with s = 0, slip tau = -g s/|s|, and the total force
-sum tau dA = F (N). Signs (theory §0): tau acts on the substrate; U is the sphere's rigid shift relative
+sum tau dA = F (N). Signs (docs/theory.md §0): tau acts on the substrate; U is the sphere's rigid shift relative
 to the substrate far field, U.F > 0 under a steady load (Cattaneo: U_x > 0 for F along +x).
 
 Method: active-set Newton-CG with deflation ("projected TangCG")
 -------------------------------------------------------------------
 The step is the convex program  min 1/2 (tau - tau')^T A (tau - tau') + e.tau  over the discs
-|tau_I| <= g_I with sum tau = F/dA (dU is the multiplier of the force constraint). We solve it with one
-nonlinear preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, Vollebregt & Oosterlee
-2015, theory §5.4), with three choices that matter for speed:
+|tau_I| <= g_I with sum tau = F/dA (dU is the multiplier of the force constraint), solved by one nonlinear
+preconditioned conjugate-gradient loop in the spirit of TangCG (Zhao, Vollebregt & Oosterlee 2015, theory
+§5.4), with three choices that matter for speed:
 
 * Exact Newton linearisation of the slip area. In a slip element the unknown is the direction of
   tau = g n; the linearised operator is t^T A t plus the curvature kappa = |s|/g (rotating a traction of
   fixed length changes its direction). The stick/slip operator K = P (A + kappa) P (P = identity in stick,
   t t^T in slip) is symmetric positive definite, so CG applies without change inside a fixed division.
-* The force constraint by deflation, as the approach in NormCG (theory §4.3, §5.2 alternative): every
-  direction is projected onto sum v = 0 in the free directions, so a CG step keeps the force (only the
-  renormalisation of the slip tractions moves it, by second-order amounts, until the next exact
-  re-synchronisation puts it back); dU is recovered in closed form as the least-squares multiplier
-  (stick slip and tangential slip orthogonal to the constraint vectors). There is no outer Newton loop on
-  dU and no bracketing, so there is nothing to degrade near the traction bound (P12).
-* A symmetric preconditioner (`solver.tangential._preconditioner`) built from Strang-circulant inverses of the
-  2x2-block operator on the unpadded grid (`op.tangential_inverse`). In the stick area it is M = A^-1; on a
-  slip element, whose turning is resisted by a_tt + kappa, the two-term form Q P M P Q + D with
-  Q = a_tt/(a_tt + kappa), D = kappa/(a_tt + kappa)^2 gives the element its own stiffness as diagonal and lets
-  its coupling fade with kappa (before it, edge elements where g -> 0 were turned back and forth by their
-  neighbours' residuals: cold Cattaneo 32 / 50 / 95 -> 22 / 27 / 37 products at dx = 0.2 / 0.1 / 0.05, and
-  511^2 converges where it failed after 500). On contacts of 16000 elements and more a second circulant, the
-  inverse of A + 4 a I, takes the slip elements with kappa of the order of a_tt: the two-term form weighted
-  their smooth residuals by D ~ 1/(4 a_tt), far above the inverse symbol of A, and on wide slip rings those
-  modes were badly conditioned (warm steps 31 / 59 -> 22 / 28 products at 217^2 / 511^2, cold 37 / 54 -> 34 /
-  38). Both forms are symmetric positive definite, so CG applies unchanged inside a fixed division.
+* The force constraint by deflation, as in NormCG (docs/theory.md §4.3, §5.2 alternative): every direction is
+  projected onto sum v = 0 in the free directions, so a CG step keeps the force (the renormalisation of the
+  slip tractions moves it by second-order amounts, put back at the next exact re-synchronisation); dU is
+  recovered in closed form as the least-squares multiplier. There is no outer Newton loop on dU and no
+  bracketing, so nothing degrades near the traction bound (docs/theory.md P12).
+* A symmetric preconditioner (`solver.tangential._preconditioner`) from Strang-circulant inverses of the
+  2x2-block operator on the unpadded grid (`op.tangential_inverse`): M = A^-1 in stick; on a slip element,
+  whose turning is resisted by a_tt + kappa, the two-term form Q P M P Q + D (Q = a_tt/(a_tt + kappa),
+  D = kappa/(a_tt + kappa)^2) gives the element its own stiffness as diagonal and lets its coupling fade with
+  kappa, so that edge elements where g -> 0 are not turned back and forth by their neighbours' residuals
+  (cold Cattaneo 22 / 27 / 37 products at dx = 0.2 / 0.1 / 0.05 against 32 / 50 / 95 with M = A^-1 on
+  every element). On contacts of 16000 elements and more a second circulant, the inverse
+  of A + 4 a I, takes the slip elements with kappa of the order of a_tt (see that module).
 
-After each CG step, stick elements that leave their disc are projected radially onto it and become slip
-(many changes per iteration are allowed, as in BCCG / NormCG), slip elements whose slip turns along the
-traction (s.n > 0) are released to stick (or, when that slip exceeds 2 a_self g, more than the element's
-own traction can undo over its whole range, their traction is turned against the slip, by the step that
-minimises the energy along the turns (`_tangcg.ProjectedTangCG.turn_reversed`): released, their stick
-residual would be far outside the disc), slip elements are renormalised to |tau| = g, and the force is
-restored by a uniform shift of the stick tractions wherever u is then recomputed exactly; the CG recurrence
-restarts after any change of the division. The projected gradient method (theory §5.5) is simpler but needs
-thousands of products on these problems (it serves only as the cycling safeguard below); Gauss-Seidel (§5.3) is
-sequential and grows with the grid.
+The iteration itself (projection events, releases and turns, the cost of a step, lagged steps, the safeguards
+against cycling and drift) is described in `solver.tangential._tangcg`.
 
-Cost per iteration: one `op.tangential` (A v) and one `op.tangential_inverse` (preconditioner; two on
-contacts of 16000 elements and more, a quarter of a product each); the element loops are numba kernels
-(`solver._tangential_{division,cg,moves}`, `solver.tangential._preconditioner`) on preallocated buffers. The displacement
-u = A tau is carried along (u += alpha A v); the small local corrections (renormalisation, projection) are
-added with the self coefficients only, and u is recomputed exactly (one extra `op.tangential`) after steps
-that changed the division by projection and always before convergence is accepted. While the division is
-being identified (the previous step projected elements) the next step is a lagged projected step
-(`_tangcg.ProjectedTangCG.lagged_step`: along the preconditioned residual with the previous exact step length,
-then u exactly), one product where an exact step and its re-synchronisation take two; it is undone, and not
-tried again in the solve, if it raised the energy (cold Cattaneo 22 / 27 / 34 / 38 -> 18 / 21 / 26 / 30
-products at 55^2 / 109^2 / 217^2 / 511^2).
-`TangentialResult.iterations` counts every `op.tangential` call of the solve (including the product A tau'
-and the re-synchronisations), so it is the honest cost in convolution pairs.
-
-Safeguards: a slip traction may turn by at most MAX_TURN g per iteration (trust region of the
-linearised rotation); when no stick element is left to restore the force (f_t -> 1: at every
-re-synchronisation of the Cattaneo solve at f_t = 0.999), the slip tractions are turned on their rims
-(`_force_projection.project_on_force` with the region: the plain Euclidean projection would pull all of them
-inside their discs, into stick, and the division would collapse: f_t = 0.999 failed at dx = 0.2 with the
-first, hard-threshold form of the slip preconditioner), and the CG recurrence restarts; when no element is
-left in stick (stick zone below one element, f_t -> 1), the reported dU is the displacement of the
-sub-element stick point (see `_stick_point_shift`).
-Cycling safeguard: the active-set iteration is not monotone in the energy (projection events, releases), and
-it can cycle: cold solves close to the bound on fine grids, and warm starts far from a load turned near the
-bound (from f_t = 0.75 along x to 0.99 turned by 1 rad at 55^2: no convergence in 3000 products; now 66). When
-the best exact residual has not halved for STALL_PRODUCTS products, GRADIENT_PRODUCTS steps of the accelerated
-projected gradient method (theory §5.5; monotone in the energy, so it leaves any cycle) run from the best exact
-iterate, and CG resumes from there (`_tangcg.ProjectedTangCG.gradient_phase`). When an exact
-re-synchronisation finds the residual far above the tolerance (drift of the self-coefficient updates on dense
-slip areas), u is kept exact from then on. One early re-synchronisation, when the residual first falls below
-SYNC_EARLY tol, removes the drift of the large early moves without restarting the recurrence, so that the final
-check rarely fails.
-Product memo: A tau' is taken from the previous solve when tau' is its traction (rolling), see
-`previous_displacement`.
-
-`TangentialResult.displacement` is A tau plus `extra_slip` when that is given (the issue's convention).
+`TangentialResult.displacement` is A tau plus `extra_slip` when that is given.
 
 Stopping criterion (`TangentialParams.tol`): with u exactly re-synchronised,
 
@@ -96,12 +49,11 @@ tangential slip (slip not opposite to the traction) in slip elements weighted by
 resistance to turning, |t_I . s_I| a_tt/(a_tt + kappa_I) with kappa_I = |s_I . n_I|/g_I, and slip elements
 with s.n > 0 are released first (that violation, s.n, also counts); a_self = max(A^xx_II, A^yy_II) is the
 self coefficient (mm/MPa). So the residual is the traction change, relative to max g, that one element
-would need to remove its own error: a_self in stick, a_tt + kappa for turning a slip traction. (Without
-the kappa weight, elements at the contact edge with g ~ 1e-4 max g and a direction error of 1e-9 rad held
-the test for 20 of 86 products at 511^2, where tol 1e-9 was out of reach; measured against a reference at
-tol 1e-11 the traction error was 0.09-0.57 tol max g for tol 1e-4 ... 1e-8 on the Cattaneo grids, and up to
-0.87 tol max g for tol 1e-5 ... 1e-8 on 55^2 ... 511^2 (a probe of 2026-11-24, in git history);
-`tests/solver/test_tangential_contract.py` checks < 3 tol max g.)
+would need to remove its own error: a_self in stick, a_tt + kappa for turning a slip traction (without the
+kappa weight, elements at the contact edge with g ~ 1e-4 max g and a direction error of 1e-9 rad would hold
+the test far below what the tractions need). Against a reference solved at tol 1e-11 the traction error is
+below 0.9 tol max g for tol 1e-4 ... 1e-8 on 55^2 ... 511^2 (Cattaneo grids);
+`tests/solver/test_tangential_contract.py` checks < 3 tol max g.
 |tau| <= g holds to round-off by construction at every iterate, and the force balance in every returned
 result (it is restored before the final exact re-synchronisation).
 """
@@ -111,7 +63,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rollcontact.bem.errors import ConvergenceError, GrossSlidingError, InputError
+from rollcontact.bem.errors import GrossSlidingError, InputError
 from rollcontact.solver.memo import ProductMemo, same
 from rollcontact.solver.tangential import _force_projection as FP, _moves
 from rollcontact.solver.tangential._tangcg import ProjectedTangCG
@@ -147,7 +99,7 @@ class TangentialParams:
 
 @dataclass
 class TangentialResult:
-    """Solution of one step (units MPa, mm, N; theory.md §5.1)."""
+    """Solution of one step (units MPa, mm, N; docs/theory.md §5.1)."""
 
     traction: np.ndarray        # (2, ny, nx) MPa
     shift_increment: np.ndarray  # (2,) mm, dU of this step (U_new = U_old + dU)
@@ -169,7 +121,7 @@ def traction_capacity(bound, grid) -> float:
 def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, initial=None,
                      extra_slip=None, previous_displacement=None, previous_region=None,
                      params=TangentialParams()) -> "TangentialResult":
-    """Solve one step of the transient tangential problem (theory.md §5.1).
+    """Solve one step of the transient tangential problem (docs/theory.md §5.1).
 
     Parameters
     ----------
@@ -191,8 +143,8 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
         stick elements only (`_force_projection.place_on_force`). Without it the start is the Euclidean projection of
         `initial` onto the discs and the force, which puts an element whose bound grew, and about half of
         the elements on the bound, inside the disc, i.e. in stick, and the division must be found again
-        (coupled loop: about 2x the products). Not used for rolling steps, where it measured worse (the
-        pressure moves by a cell: 11.1 -> 13.6 products per step).
+        (coupled loop: about 2x the products). Not used for rolling steps, where it costs more (the
+        pressure moves by a cell: 13.6 products per step against 11.1).
     params : TangentialParams.
 
     Returns TangentialResult; raises GrossSlidingError when |F| >= sum g dA (no equilibrium) and
@@ -210,14 +162,14 @@ def solve_tangential(op, bound, previous_traction, *, force=None, shift=None, in
                          None if extra_slip is None else np.asarray(extra_slip, dtype=float), params,
                          lambda region: _regime(force, capacity, region))
     ws = it.ws
-    # start (theory §5.1): u' = A tau', tau on the discs (and the force), u = A tau
+    # start (docs/theory.md §5.1): u' = A tau', tau on the discs (and the force), u = A tau
     memo_reuses = _previous_displacement(it, tau_p, previous_displacement)
     if gmax == 0.0:  # no contact: zero traction, the step is pure rigid shift
         return _finish(it, extra_slip, dA, 0.0)
     FP.start_traction(ws.tau, tau_p if initial is None else initial, g, it.f_cells, previous_region, ws.region,
                       ws.u, it.axx, it.ayy)
     it.memo_reuses = _start_displacement(it, tau_p, memo_reuses)
-    # projected TangCG with the force constraint deflated (theory §5.4, §5.2); dU is its multiplier
+    # projected TangCG with the force constraint deflated (docs/theory.md §5.4, §5.2); dU is its multiplier
     residual = it.run()
     if F is not None and not np.any(ws.region == 1):
         _stick_point_shift(ws.tau, ws.w, g, ws.region, dU, ws.slip)
@@ -313,7 +265,7 @@ STICK_POINT_RESOLVED = 1e-3
 
 
 def _stick_point_shift(tau, w, g, region, dU, slip):
-    """Rigid shift when the stick zone is smaller than one element (no stick element left, P12).
+    """Rigid shift when the stick zone is smaller than one element (no stick element left, docs/theory.md P12).
 
     Without a stick element the multiplier of the force constraint is no longer a displacement of
     stuck material. When the slip directions are nearly parallel (a load in one direction, f_t -> 1), it is

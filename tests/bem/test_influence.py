@@ -1,4 +1,4 @@
-"""Influence coefficients of a uniformly loaded rectangular element (theory.md §2)."""
+"""Influence coefficients of a uniformly loaded rectangular element (docs/theory.md §2)."""
 import numpy as np
 import pytest
 from scipy import integrate
@@ -11,7 +11,7 @@ K = 0.25 * (-(1 - 2 * NU) / GS) * G  # rigid sphere: K/G = -(1 - 2 nu2)/(4 G2)
 
 
 def point_kernel(comp, X, Y):
-    """Boussinesq / Cerruti point-load displacements of one half-space (theory.md §2.1)."""
+    """Boussinesq / Cerruti point-load displacements of one half-space (docs/theory.md §2.1)."""
     r = np.hypot(X, Y)
     c = 1 / (2 * np.pi * GS)
     return {"zz": lambda: c * (1 - NU) / r,
@@ -39,7 +39,7 @@ def test_coefficients_equal_numerical_integration_of_point_kernels(point):
 
 @pytest.mark.parametrize("r", [2.0, 20.0])
 def test_far_field_approaches_point_load_with_second_order_error(r):
-    # A(r) / (kernel(r) dA) - 1 = O((h/r)^2) (theory §2.2): bound with constant 1 on (h/r)^2.
+    # A(r) / (kernel(r) dA) - 1 = O((h/r)^2) (docs/theory.md §2.2): bound with constant 1 on (h/r)^2.
     angles = np.linspace(0.1, 2 * np.pi, 7)
     X, Y = r * np.cos(angles), r * np.sin(angles)
     A = influence_coefficients(X, Y, DX, DY, G, NU, K)
@@ -69,7 +69,7 @@ def test_symmetries_and_betti_reciprocity():
 
 
 def test_mirror_symmetry_survives_far_offsets():
-    # The ln(X + r) rewrite for X < 0 keeps even kernels even far away (theory §2.2a: without it the
+    # The ln(X + r) rewrite for X < 0 keeps even kernels even far away (docs/theory.md §2.2a: without it the
     # symmetry degrades to 7e-7 at 1000 cells).
     X = np.array([1000.0, -1000.0]) * 0.2
     A = influence_coefficients(X, np.array([0.0, 0.0]), 0.2, 0.2, G, NU, K)

@@ -1,4 +1,4 @@
-"""Material constants (theory.md §1) and the world-fixed grid."""
+"""Material constants (docs/theory.md §1) and the world-fixed grid."""
 import math
 
 import numpy as np
@@ -12,7 +12,7 @@ SCENE = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 
 
 def test_seed_constants_match_theory_values():
-    # theory.md §1 lists the scene's constants to 5-6 digits.
+    # docs/theory.md §1 lists the scene's constants to 5-6 digits.
     assert SCENE.E_star == pytest.approx(5.79985, rel=1e-5)
     assert SCENE.G_star == pytest.approx(3.86659, rel=1e-5)
     assert SCENE.G == pytest.approx(2.89995, rel=1e-5)
@@ -22,7 +22,7 @@ def test_seed_constants_match_theory_values():
 
 
 def test_seed_table1_contact_radius_and_approach_need_the_usual_E_star():
-    # Pitfall P1: Table 1 gives a = 4.8 mm, d = 0.57 mm; the seed's printed Eq. 2 would give a = 6.03 mm.
+    # docs/theory.md P1: Table 1 gives a = 4.8 mm, d = 0.57 mm; the seed's printed Eq. 2 would give a = 6.03 mm.
     Fn, R = 21.19, 40.0
     a = (3 * Fn * R / (4 * SCENE.E_star)) ** (1 / 3)
     assert a == pytest.approx(4.8, abs=0.02)
@@ -34,7 +34,7 @@ def test_rigid_on_incompressible_is_uncoupled_and_identical_bodies_too():
     assert rigid.beta == 0.0
     assert rigid.E_star / rigid.G_star == pytest.approx(1.5, rel=1e-14)
     same = MaterialPair.from_moduli(210e3, 0.3, 210e3, 0.3)
-    assert abs(same.beta) < 1e-15  # pitfall P6: K is a difference
+    assert abs(same.beta) < 1e-15  # docs/theory.md P6: K is a difference
 
 
 def test_dundurs_beta_steel_on_aluminium():

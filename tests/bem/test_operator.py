@@ -1,4 +1,4 @@
-"""FFT convolution operator (theory.md §3): exact against the dense matrix product."""
+"""FFT convolution operator (docs/theory.md §3): exact against the dense matrix product."""
 import numpy as np
 import pytest
 from scipy.fft import next_fast_len
@@ -101,7 +101,7 @@ def test_coupling_is_off_for_the_seed_materials_and_costs_nothing():
 
 
 def test_hertz_pressure_gives_hertz_displacement():
-    # theory §2.2: the cell-sampled Hertz pressure of the scene gives w within ~0.1 % of d everywhere
+    # docs/theory.md §2.2: the cell-sampled Hertz pressure of the scene gives w within ~0.1 % of d everywhere
     # (inside w = d - r^2/2R, outside the closed form). Sampling at centres (not cell averages) adds
     # an O(dx^2/a^2) error: the bound 3e-3 d covers both.
     hz = HertzSphere(40.0, SCENE.E_star, 21.19)
@@ -168,10 +168,10 @@ def test_shifted_tangential_inverse_inverts_the_shifted_circulant():
 
 
 def test_preconditioners_invert_the_circulant_exactly_on_a_large_grid():
-    """The circulant's symbols are floored only to guard against non-positive values. The old floor, 1e-3 of the
-    largest eigenvalue, grew with the grid (the k = 0 value of a 1/r kernel grows like its width): at 576^2 it
-    clipped the tangential symbol's high frequencies (18 % of them at 511^2), so the preconditioner no longer
-    inverted its own circulant there. Strang circulant C (kernel at the nearest periodic offset, the odd xy kernel
+    """The circulant's symbols are floored only to guard against non-positive values. A floor relative to the largest
+    eigenvalue would grow with the grid (the k = 0 value of a 1/r kernel grows like its width): 1e-3 of it clips the
+    tangential symbol's high frequencies at 576^2 (18 % of them at 511^2), and the preconditioner would not invert
+    its own circulant there. Strang circulant C (kernel at the nearest periodic offset, the odd xy kernel
     zero at the Nyquist offset) on a grid equal to its period: M C x = x to round-off."""
     n = 576
     assert n == next_fast_len(n, real=True)

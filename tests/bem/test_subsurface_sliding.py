@@ -1,4 +1,4 @@
-"""The sliding Hertz sphere (full slip, q_x = mu p; theory.md §11.6): Hamilton's closed form (solver/hamilton.py)
+"""The sliding Hertz sphere (full slip, q_x = mu p; docs/theory.md §11.6): Hamilton's closed form (solver/hamilton.py)
 against the independent quadrature of the point-load solution, then the grid's subsurface stresses against Hamilton."""
 import numpy as np
 import pytest

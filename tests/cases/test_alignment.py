@@ -1,5 +1,5 @@
 """Any alignment theta between Ft and the rolling direction (issue: the seed's open question I): the sideways
-shift U_perp, the mirror symmetries of theta (theory §11.1), the angle study's figure, and the continuation of
+shift U_perp, the mirror symmetries of theta (docs/theory.md §11.1), the angle study's figure, and the continuation of
 limit-search probes. Real runs on a coarse grid (dx = 0.6 mm, a/dx = 8), real HDF5 files and PNGs.
 Units: mm, N; u = U/U0, f_t = Ft/(mu Fn), w = W/a (seed Eq. 9)."""
 from __future__ import annotations
@@ -55,7 +55,8 @@ def test_u_perp_follows_a_rotated_load(base, tmp_path):
 
 
 def test_minus_theta_is_the_mirror_image_step_by_step(oblique):
-    """Mirror y -> -y (theory §11.1): theta and -theta give the same U along Ft and opposite U_perp at every step.
+    """Mirror y -> -y (docs/theory.md §11.1): theta and -theta give the same U along Ft and opposite U_perp at every
+    step.
     Both runs solve mirror-image problems to the solver tolerance (1e-8), so they agree to 1e-9 mm (|U| ~ 0.3 mm)."""
     a, b = oblique[30].history, oblique[-30].history
     np.testing.assert_allclose(a["U_x"], b["U_x"], rtol=0, atol=1e-9)

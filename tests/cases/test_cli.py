@@ -79,7 +79,7 @@ def test_mdr_fidelity_writes_the_same_history_layout(tmp_path):
 
 
 @pytest.mark.parametrize("overrides, message", [
-    ("motion.W=20000 motion.dW=100", "exceeds the limit of"),         # 55 x 200 001 elements > 2048^2
+    ("motion.w=4179 motion.dW=100", "exceeds the limit of"),          # W = 20000 mm: 55 x 200 001 elements > 2048^2
     ("motion.dW=0", r"\[motion\] dW = 0.0 mm: allowed range is \(0, inf\)"),
     ("motion.periods=-3", r"\[motion\] periods = -3: allowed range"),
     # 4.4e10 rolling steps: refused by the scene instead of a MemoryError while the path is built
@@ -114,7 +114,7 @@ def test_gross_sliding_is_a_result_the_cli_states_clearly_and_the_file_records(t
 
 def test_u_stat_is_the_static_shift_at_f_t_also_when_further_force_levels_follow(tmp_path, capsys):
     """With load.levels the loading phase goes on past f_t (here unloading and reversal to -f_t); u_stat is the
-    shift at the end of the ramp to f_t: Cattaneo-Mindlin (seed Eq. 4, within 1 %, pitfall P10), not the shift
+    shift at the end of the ramp to f_t: Cattaneo-Mindlin (seed Eq. 4, within 1 %, docs/theory.md P10), not the shift
     after the last level (a review found the reversed value labelled with f_t)."""
     out = tmp_path / "levels.h5"
     assert main(["run", "-o", str(out), "--set", "grid.dx=0.2", "--set", "motion.periods=0", "--set", "load.ft=0.46",

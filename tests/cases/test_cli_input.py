@@ -96,9 +96,9 @@ def test_no_traceback_reaches_the_user_from_the_console_script(tmp_path):
     # a grid above the element limit names the margin that made it so, and its allowed range
     ("grid.margin=1000", "allowed range at this dx, dy and amplitude is [grid] margin <= 199.5 mm"),
     # W / dW overflowed to inf and math.ceil raised OverflowError (a traceback, exit 1)
-    ("motion.W=1e308", "[motion] W = 1e+308 mm with dW = 0.2 mm needs inf steps per quarter period; allowed range is "
-                       "W <= 5e+04 mm"),
-    # sqrt(Rx Ry) overflowed; now the derived amplitude w a is refused with its origin
+    ("motion.w=1e307", "[motion] W = 4.7857e+307 mm (= w a, a = 4.786 mm) with dW = 0.2 mm needs inf steps per "
+                       "quarter period; allowed range is W <= 5e+04 mm"),
+    # sqrt(Rx Ry) would overflow: the derived amplitude w a is refused with its origin
     ("geometry.R=1e200", "(= w a, a = 6.495e+66 mm)"),
     # squared tractions underflow: u_stat 1.6 % off without a word
     ("load.mu=1e-200", "[load] mu = 1e-200: allowed range is [1e-06, 10]"),
@@ -111,8 +111,8 @@ def test_extreme_values_are_refused_with_the_key_and_its_range(tmp_path, capsys,
 
 
 def test_a_margin_below_one_element_is_raised_to_one_element(tmp_path):
-    """margin = 0.1 mm on the 0.2 mm grid passed validation, then the contact touched the grid's edge at step 0
-    (ContactEdgeError, exit 1); the grid now keeps at least one element of margin."""
+    """margin = 0.1 mm on the 0.2 mm grid passes validation, and the contact would touch the grid's edge at step 0
+    (ContactEdgeError, exit 1): the grid keeps at least one element of margin."""
     out = tmp_path / "m.h5"
     assert main(["run", "-q", "-o", str(out), "--set", "grid.margin=0.1", "--set", "motion.periods=1"]) == 0
     with h5py.File(out) as h5:

@@ -77,3 +77,16 @@ def test_creep_curve_refuses_an_elongated_contact_rolled_obliquely(tmp_path, cap
     assert main(["creep-curve", str(scene), "--points", "2", "-o", str(tmp_path)]) == 2
     assert "direction = 30.0 deg is oblique" in capsys.readouterr().err
     assert not list(tmp_path.glob("*.csv"))
+
+
+def test_creep_curve_writes_under_results_by_default_never_beside_the_scene(tmp_path, monkeypatch):
+    """Without -o the curve goes to results/creep/ of the working folder (ignored by git), not next to the scene
+    file (the shipped scenes are tracked files)."""
+    scenes = tmp_path / "scenes"
+    scenes.mkdir()
+    (scenes / "roll.toml").write_text(SCENE)
+    monkeypatch.chdir(tmp_path)
+    assert main(["creep-curve", str(scenes / "roll.toml"), "--points", "2"]) == 0
+    assert sorted(p.name for p in (tmp_path / "results" / "creep").iterdir()) == \
+        ["roll_creep_xi.csv", "roll_creep_xi.pdf", "roll_creep_xi.png"]
+    assert sorted(p.name for p in scenes.iterdir()) == ["roll.toml"]

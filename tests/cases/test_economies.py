@@ -14,7 +14,7 @@ from rollcontact.cases.run.discretise import scene_grid, scene_path
 from rollcontact.cases.run.scene_run import run_scene
 from rollcontact.cases.scene.scene import default_scene
 
-SEED_ELEMENTS = (3050, 4200)     # seed: 3050-4200 elements for W = 1.2-3.4 mm at dx = 0.2 mm (P14)
+SEED_ELEMENTS = (3050, 4200)     # seed: 3050-4200 elements for W = 1.2-3.4 mm at dx = 0.2 mm (docs/theory.md P14)
 
 
 def naive_square(scene):
@@ -24,14 +24,14 @@ def naive_square(scene):
 
 @pytest.mark.parametrize("angle", [90, 0])
 def test_grid_of_seed_amplitude_lies_in_seed_element_range(angle):
-    scene = default_scene().with_overrides(["motion.W=1.2", f"motion.angle={angle}"])
+    scene = default_scene().with_overrides(["motion.W=1.2", f"motion.angle={angle}"], replaces=("motion.W",))
     grid = scene_grid(scene, scene_path(scene))
     assert SEED_ELEMENTS[0] <= grid.size <= SEED_ELEMENTS[1]
 
 
 @pytest.mark.parametrize("W", [1.2, 2.0, 3.4])
 def test_grid_covers_swept_strip_not_a_square(W):
-    scene = default_scene().with_overrides([f"motion.W={W}"])
+    scene = default_scene().with_overrides([f"motion.W={W}"], replaces=("motion.W",))
     grid = scene_grid(scene, scene_path(scene))
     a, m = scene.contact_radius, scene.grid.margin
     # long side along the rolling direction (y, perpendicular), short side = the contact + margin

@@ -1,7 +1,7 @@
 """[solver] fidelity = "mdr" for the axisymmetric shapes (cone, power n = 4, rounded flat punch): the 1-D spring
 model with the shape's MDR profile g(s) (solver.mdr.simulate_mdr(profile=...)) against the exact MDR answers
-(solver.mdr.exact) and against the 3-D runs where the MDR is exact (the static loading: theory §11.4), and its
-shakedown state under the seed's oscillating rolling against the closed form of theory §8.3 written for any
+(solver.mdr.exact) and against the 3-D runs where the MDR is exact (the static loading: docs/theory.md §11.4), and its
+shakedown state under the seed's oscillating rolling against the closed form of docs/theory.md §8.3 written for any
 profile (MDRTangential.shakedown_shift / limit). Units mm, N, MPa.
 
 The 1-D model runs 4001 springs (ds = (a + W)/1999); its discretisation error is O(ds/a) ~ 5e-4 at most, measured
@@ -38,7 +38,8 @@ def test_mdr_fidelity_static_matches_exact_and_3d(name):
 @pytest.mark.parametrize("name", SHAPES)
 def test_mdr_fidelity_shakedown_matches_the_closed_form_for_the_profile(name):
     """Seed's oscillating rolling at w = 0.23 (30 periods): below the MDR limit f_t,lim of the profile (0.02 under
-    it) and at f_t = 0.3 the spring row shakes down to u_sd = 1 - g(b)/d of theory §8.3 (to 1e-5; measured at most
+    it) and at f_t = 0.3 the spring row shakes down to u_sd = 1 - g(b)/d of docs/theory.md §8.3 (to 1e-5; measured at
+    most
     4e-7); 0.03 above the limit it ratchets. Limits at w = 0.23: cone 0.5929, n = 4 0.7127, flat 0.7514."""
     scene = shape_scene(name, motion={"w": 0.23, "periods": 30}, solver={"fidelity": "mdr"})
     tg = scene.tangential_reference

@@ -1,6 +1,6 @@
 """[geometry] shape (cases.scene.geometry): the keys each shape takes and the refusals, the default grid a/12 from
 the shape's own contact radius, and the 3-D runs of the cone, the power law n = 4 and the rounded flat punch on
-that default grid against the exact MDR answers (solver.mdr.exact; theory.md §11.4): approach and contact radius
+that default grid against the exact MDR answers (solver.mdr.exact; docs/theory.md §11.4): approach and contact radius
 (normal), the shift U and the stick radius under Ft raised to f_t = 0.9 (tangential, Jaeger/Ciavarella), the
 pressure of the rounded flat punch and the traction along a diameter; the cylinder against the 2-D line contact;
 file profiles. Units mm, N, MPa.
@@ -20,7 +20,7 @@ from rollcontact.solver.mdr.exact import MDRContact
 
 SHAPES = {"cone": {"shape": "cone", "slope": 6.0}, "power": {"shape": "power", "n": 4.0, "R": 10.0},
           "flat_rounded": {"shape": "flat_rounded", "b": 4.0, "R": 5.0}}
-#: materials for which the traction superposition is exact (nu = 0, beta = 0; theory §7.2) with E* = 5.8 MPa
+#: materials for which the traction superposition is exact (nu = 0, beta = 0; docs/theory.md §7.2) with E* = 5.8 MPa
 NU0 = {"E1": 11.6, "nu1": 0.0, "E2": 11.6, "nu2": 0.0}
 
 

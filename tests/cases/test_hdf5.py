@@ -18,6 +18,7 @@ def sample(status="complete"):
 
 
 def test_write_then_read_gives_back_every_array_and_attribute(tmp_path):
+    (tmp_path / "sub").mkdir()
     path = write_run(tmp_path / "sub" / "run.h5", sample())
     back = read_run(path)
     ref = sample()

@@ -1,4 +1,4 @@
-"""`rollcontact limits` subcommand (cases/limits_cmd.py): closed-form shakedown limits on the command line."""
+"""`rollcontact limits` subcommand (cases/cli/limits_cmd.py): closed-form shakedown limits on the command line."""
 import argparse
 
 import pytest

@@ -195,17 +195,17 @@ def test_main_cli_registers_plot_and_compare():
 
 def test_history_of_a_reversed_load_shows_its_negative_shift_and_no_mdr_lines(tmp_path):
     """load.levels = [0, -f_t] (Mindlin-Deresiewicz reversal, then rolling): u goes negative, so the axis must not
-    start at 0 (it did: the whole oscillation was cut off), and the MDR u_sd of a monotonic ramp to f_t do not
+    start at 0 (the whole oscillation would be cut off), and the MDR u_sd of a monotonic ramp to f_t do not
     apply. A static run's axis counts steps, not periods."""
     from rollcontact.cases.plots.run_figures import history_figure
     rolled = open_run(_run(tmp_path / "rev.h5", "load.ramp_steps=2", "load.levels=[0.0, -0.46]"))
     fig = history_figure([rolled])
     ax, ax2 = fig.axes[:2]
     assert rolled.u().min() < -0.3 and ax.get_ylim()[0] <= rolled.u().min()  # u_stat(0.46) = 0.34, reversed
-    assert not any("MDR" in t.get_text() for t in ax.get_legend().get_texts())
+    assert not any("MDR" in t.get_text() for t in fig.legends[0].get_texts())     # the legend is above the axes
     assert "periods" in ax2.get_xlabel()
     static = open_run(_run(tmp_path / "static.h5", "motion.periods=0"))
     fig = history_figure([static])
     assert fig.axes[1].get_xlabel().startswith("steps") and fig.axes[0].get_ylim()[0] == 0.0
-    assert any("MDR" in t.get_text() for t in history_figure([open_run(_run(tmp_path / "mono.h5"))]).axes[0]
-               .get_legend().get_texts())
+    assert any("MDR" in t.get_text() for t in history_figure([open_run(_run(tmp_path / "mono.h5"))]).legends[0]
+               .get_texts())

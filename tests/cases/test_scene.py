@@ -14,7 +14,7 @@ def test_default_scene_is_the_seed_table1_perpendicular_setting():
     assert s.geometry.R == 40.0 and s.load.Fn == 21.19 and s.load.mu == 0.93
     assert s.spacing == (0.2, 0.2)
     assert s.f_t == 0.46 and s.motion.w == 0.23 and s.motion.angle == 90.0
-    assert s.contact_radius == pytest.approx(4.7857, abs=1e-4)  # theory §7.1
+    assert s.contact_radius == pytest.approx(4.7857, abs=1e-4)  # docs/theory.md §7.1
     assert s.rolling_direction == pytest.approx((0.0, 1.0), abs=1e-15)
 
 
@@ -25,7 +25,11 @@ def test_rolling_step_hits_the_reversal_points_exactly():
 
 
 def test_round_trip_through_toml_text_preserves_every_key():
-    s = default_scene().with_overrides(["load.Ft=5.5", "materials.E1=inf", "load.levels=[0.2, -0.3]"])
+    data = default_scene().to_dict()
+    data["load"].pop("ft")
+    data["load"]["Ft"] = 5.5          # the load in N (an override may not switch the scene's spelling)
+    s = Scene.from_dict(data, name="paper_perpendicular").with_overrides(["materials.E1=inf",
+                                                                          "load.levels=[0.2, -0.3]"])
     back = Scene.from_toml_text(s.to_toml(), name=s.name)
     assert back.to_dict() == s.to_dict()
     assert math.isinf(back.materials.E1) and back.load.Ft == 5.5 and back.load.levels == [0.2, -0.3]
@@ -52,10 +56,10 @@ def test_a_minimal_file_takes_neutral_defaults(tmp_path):
     ("motion.dW=-0.2", r"\[motion\] dW = -0.2 mm: allowed range"),
     ("motion.periods=-1", r"\[motion\] periods = -1: allowed range"),
     ("load.bogus=1", r"\[load\] unknown key\(s\) \['bogus'\]"),
-    ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr'\]"),
+    ("solver.fidelity=\"fem\"", r"fidelity = 'fem': allowed values are \['bem', 'mdr', 'fastsim', 'fastrip', 'auto'\]"),
     ("materials.nu2=0.7", r"\[materials\] nu2 = 0.7: allowed range"),
     ("load.Fn=\"heavy\"", r"\[load\] Fn = 'heavy': expected a number in N"),
-    ("load.Ft=30", r"exceeds mu\*Fn"),
+    ("load.ft=1.5", r"\[load\] ft = 1.5: allowed range is \[0, 1\]"),
     ("noequals", r"expected section.key=value"),
     ("physics.g=9.81", r"unknown section 'physics'"),
 ])
@@ -101,17 +105,37 @@ def test_contradictory_alternatives_are_refused(tmp_path):
         Scene.from_toml(f)
 
 
-def test_override_of_an_alternative_replaces_the_other_spelling():
-    s = default_scene().with_overrides(["motion.W=1.2"])
-    assert s.motion.w is None and s.amplitude == 1.2
+@pytest.mark.parametrize("override, scene_gives, equivalent", [
+    ("load.Ft=5.5", "load.ft = 0.46", "load.ft = 0.279093 is Ft = 5.5 N here"),
+    ("motion.W=1.2", "motion.w = 0.23", "motion.w = 0.250747 is W = 1.2 mm here")])
+def test_an_override_in_the_other_spelling_of_a_key_the_scene_gives_is_refused(override, scene_gives, equivalent):
+    """The paper scene gives ft and w: --set load.Ft (or motion.W) would drop them unannounced. Refused, with the
+    value in the scene's spelling that gives the same load (Ft = ft mu Fn, mu Fn = 19.707 N) or amplitude (W = w a,
+    a = 4.7857 mm)."""
+    with pytest.raises(SceneError, match=f"overrides '{override}': the scene gives {scene_gives}, the same quantity "
+                                         f"in its other spelling: give .*\\({equivalent}\\)"):
+        default_scene().with_overrides([override])
 
 
-@pytest.mark.parametrize("first, second", [("load.Ft=5", "load.ft=0.3"), ("motion.w=0.2", "motion.W=1.0"),
+def test_forces_over_creepages_of_a_rolling_scene_are_refused():
+    """The shipped creep scene prescribes xi, eta: --set rolling.Fx, Fy dropped them unannounced."""
+    scene = Scene.from_toml(shipped_scene_path("creep_steady.toml"))
+    with pytest.raises(SceneError, match="the scene gives rolling.xi = 0.0005: prescribed forces .* exclude each other"):
+        scene.with_overrides(["rolling.Fx=-100", "rolling.Fy=0"])
+
+
+def test_a_sphere_becomes_an_ellipsoid_when_both_radii_are_given():
+    """R and Rx, Ry name different shapes (as geometry.shape does): an override switches the shape."""
+    s = default_scene().with_overrides(["geometry.Rx=80", "geometry.Ry=20"])
+    assert s.shape == "ellipsoid" and s.geometry.R is None
+
+
+@pytest.mark.parametrize("first, second", [("load.ft=0.3", "load.Ft=5"), ("motion.w=0.2", "motion.W=1.0"),
                                            ("geometry.Rx=20", "geometry.R=40")])
 def test_both_spellings_in_one_set_of_overrides_are_refused_naming_both(first, second):
-    """Within one command the two spellings of a quantity contradict each other (as in a scene file); the last one
-    used to win silently. Repeating the same key is an ordinary override (the last wins)."""
-    with pytest.raises(SceneError, match=rf"--set '{first}' and --set '{second}': give either"):
+    """Within one command the two spellings of a quantity contradict each other (as in a scene file): neither may win
+    silently. Repeating the same key is an ordinary override (the last wins)."""
+    with pytest.raises(SceneError, match=rf"overrides '{first}' and overrides '{second}': give either"):
         default_scene().with_overrides([first, second])
     assert default_scene().with_overrides(["load.ft=0.3", "load.ft=0.4"]).f_t == 0.4
 
@@ -134,35 +158,14 @@ def test_unreadable_or_invalid_files_give_scene_errors(tmp_path):
         Scene.from_toml(f)
 
 
-def test_readme_scene_table_states_the_defaults_of_cases_scene():
-    """Every `key = value` in the README's defaults column is the dataclass default; every literal default
-    (not None, not derived) is stated there."""
-    import re
-    from dataclasses import fields as dc_fields
-    from pathlib import Path
-    from rollcontact.cases.scene.scene import SECTIONS, _parse_value
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
-    rows = {m.group(1): m.group(2) for m in re.finditer(r"^\| `\[(\w+)\]` \|.*\| (.*) \|$", readme, re.M)}
-    assert set(rows) == set(SECTIONS)
-    for sec, klass in SECTIONS.items():
-        stated = {k: _parse_value(v) for k, v in re.findall(r"`(\w+) = ([^`]+)`", rows[sec])}
-        for f in dc_fields(klass):
-            default = f.default_factory() if callable(f.default_factory) else f.default
-            if f.name in ("ft", "w"):                     # None: neither ft nor Ft (w nor W) given, i.e. 0
-                assert default is None and stated[f.name] == 0
-            elif f.name in stated:
-                assert stated[f.name] == default, (sec, f.name, stated[f.name], default)
-            elif default is not None:
-                raise AssertionError(f"README scene table: [{sec}] {f.name} = {default!r} not stated")
-        assert set(stated) <= {f.name for f in dc_fields(klass)}, (sec, stated)
-
-
 def test_w_and_W_share_one_range():
-    """w = W/a was limited to [0, 1] while W = 10 mm (w = 2.09) ran: both are open above now (the step limit
-    bounds them)."""
+    """w = W/a is open above like W (W = 10 mm is w = 2.09 on the paper scene); the step limit bounds both."""
     s = default_scene().with_overrides(["motion.w=1.5"])
     assert s.amplitude == pytest.approx(1.5 * s.contact_radius)
-    assert default_scene().with_overrides(["motion.W=10"]).amplitude == 10.0
+    data = default_scene().to_dict()
+    data["motion"].pop("w")
+    data["motion"]["W"] = 10.0
+    assert Scene.from_dict(data).amplitude == 10.0
     with pytest.raises(SceneError, match=r"\[motion\] w = -0.1: allowed range"):
         default_scene().with_overrides(["motion.w=-0.1"])
 

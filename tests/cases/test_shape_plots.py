@@ -12,7 +12,7 @@ from test_geometry_shapes import shape_scene
 def test_cone_sweep_folder_is_plotted_against_the_cone_mdr(tmp_path, capsys):
     """Three runs at w = 0.23 (two MDR shakedown runs, one 3-D run on a coarse grid): the u_sd figure is written
     (PNG of FIGSIZE * DPI pixels) and the table lists each run beside the cone's MDR u_sd and the cone's MDR limit
-    f_t,lim = 0.5929 (theory §8.3 for the cone; the sphere's would be 0.6611)."""
+    f_t,lim = 0.5929 (docs/theory.md §8.3 for the cone; the sphere's would be 0.6611)."""
     folder = tmp_path / "cone_sweep"
     base = shape_scene("cone", motion={"w": 0.23, "periods": 10})
     for f in (0.2, 0.4):

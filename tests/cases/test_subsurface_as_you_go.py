@@ -48,8 +48,8 @@ def test_run_with_stresses_writes_what_stresses_all_steps_writes_after_the_run(t
     scene = rollcontact.load_scene(overrides={**COARSE, "motion.periods": 1})
     result = rollcontact.run(scene, out, stresses=True, progress=lines.append)
     stored = [int(s) for s in result.field_steps]
-    assert len(stored) >= 3 and result.subsurface["computed"] == stored and result.subsurface["reused"] == []
-    assert result.subsurface["steps"] == stored and len(result.subsurface["z"]) == 30
+    assert len(stored) >= 3 and result.subsurface.computed == stored and result.subsurface.reused == []
+    assert result.subsurface.steps == stored and len(result.subsurface.z) == 30
     written = [line for line in lines if line.startswith("subsurface stresses of step")]
     assert [int(line.split()[4]) for line in written] == stored and all("written" in line for line in written)
     assert not folder_of(out).exists()
@@ -66,7 +66,7 @@ def test_a_failed_run_keeps_its_stresses_and_its_restart_computes_only_the_other
     failed = rollcontact.run(scene, out, stresses=True, depths=[0, 0.5, 1.5, 4])
     assert failed.status == "failed" and "ConvergenceError" in failed.error
     before = [int(s) for s in failed.field_steps]
-    assert len(before) >= 3 and failed.subsurface["steps"] == before and not folder_of(out).exists()
+    assert len(before) >= 3 and failed.subsurface.steps == before and not folder_of(out).exists()
     with h5py.File(out, "r") as h5:
         assert list(h5["subsurface/step"][()]) == before
     lines = []
@@ -74,7 +74,7 @@ def test_a_failed_run_keeps_its_stresses_and_its_restart_computes_only_the_other
                                depths=[0, 0.5, 1.5, 4], progress=lines.append)
     after = [int(s) for s in done.field_steps]
     assert done.status == "complete" and after[:len(before)] == before and len(after) > len(before)
-    assert done.subsurface["reused"] == before and done.subsurface["computed"] == after[len(before):]
+    assert done.subsurface.reused == before and done.subsurface.computed == after[len(before):]
     written = [int(line.split()[4]) for line in lines if line.startswith("subsurface stresses of step")]
     assert written == after[len(before):]
     assert_same_as_computed_afterwards(out, tmp_path, depths=[0, 0.5, 1.5, 4])

@@ -1,5 +1,5 @@
 """Subsurface stresses of real run files: `rollcontact stresses RUN.h5`, `run --stresses`, the /subsurface layout and
-the Hertz closed form on the axis (theory.md §11.6)."""
+the Hertz closed form on the axis (docs/theory.md §11.6)."""
 from __future__ import annotations
 
 import h5py
@@ -60,7 +60,8 @@ def test_stresses_command_writes_the_layout_and_keeps_the_run(hertz_run, capsys)
 
 def test_hertz_axis_from_a_run_file_matches_the_closed_form(hertz_run):
     """The solver's pressure on the default grid (a/dx = 12): on the axis sigma_z, sigma_r within 1 % of p0 of the
-    closed form (measured 0.034 %) (theory.md §11.6, with the run's a and p0), max shear 0.31 p0 at 0.48 a within one default depth
+    closed form (measured 0.034 %) (docs/theory.md §11.6, with the run's a and p0), max shear 0.31 p0 at 0.48 a within
+    one default depth
     step (0.065 a there) and von Mises 0.62 p0 at the same depth."""
     depths = ",".join(f"{z:.6f}" for z in np.linspace(0, 3.5, 71))
     assert cli(["stresses", str(hertz_run), "-q", "--depths", depths]) == 0

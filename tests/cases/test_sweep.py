@@ -20,11 +20,13 @@ import pytest
 from rollcontact.bem.errors import OutputExistsError, SceneError
 from rollcontact.cases.results.hdf5 import is_complete, read_run
 from rollcontact.cases.sweep.limit_search import search_limits
-from rollcontact.cases.scene.scene import Scene, shipped_scene_path
+from rollcontact.cases.scene.scene import Scene, default_scene, shipped_scene_path
 from rollcontact.cases.sweep.runner import run_sweep
 from rollcontact.cases.sweep.plan import parse_vary, plan_sweep, run_file_name
 from rollcontact.cases.sweep.table import read_summary
 from rollcontact.solver.mdr import limits as L
+
+from reference_data import KAPPA_3D_FT03
 
 COARSE = ["grid.dx=0.6", "grid.dy=0.6", "motion.dW=10", "motion.periods=6", "solver.shakedown_tol=1e-3"]
 VARY_2x2x2 = ["load.ft=0.3,0.9", "motion.w=0.15,0.3", "motion.angle=0,90"]
@@ -74,7 +76,11 @@ def test_vary_comma_list_keeps_order_and_types():
     ("load.ft=0.1,0.1", "listed twice"),
 ])
 def test_bad_vary_syntax_is_refused_with_the_expected_form(spec, fragment):
-    with pytest.raises(SceneError, match=fragment):
+    """The message names the command line's option inside a command, the API's argument in Python."""
+    from rollcontact.cases.arguments import command_line
+    with command_line(), pytest.raises(SceneError, match=fragment):
+        parse_vary(spec)
+    with pytest.raises(SceneError, match=fragment.replace("--vary section.key=", r"vary = \{'section.key'")):
         parse_vary(spec)
 
 
@@ -104,9 +110,8 @@ def test_run_file_name_is_deterministic_safe_and_tracks_the_scene(base, tmp_path
 # ------------------------------------------------------------------------------------------- sweeps
 # u_sd of the four shaken-down coarse runs (f_t = 0.3) against seed Eq. 13 with the kappa the 3-D model converges
 # to at that point, KAPPA_3D_FT03[(w, angle)] = (1 - f_t - (1 - u_sd)^(3/2)) / (w u_sd) of u_sd at dx = dy = dW =
-# 0.1 mm (paper parallel scene, margin 0.6, 10 periods, shakedown_tol 1e-4; measured 2026-11-25 with
-# run_scene(base.with_overrides(["grid.dx=0.1", "grid.dy=0.1", "motion.dW=0.1", "load.ft=0.3", "motion.w=...",
-# "motion.angle=..."])), 9-33 s per run; dx 0.2 -> 0.1 changes u_sd by <= 3.8e-5). u_sd:
+# 0.1 mm (regression data, tests/reference_data.py, kappa_3d_ft03: paper parallel scene, margin 0.6, 10 periods,
+# shakedown_tol 1e-4, 9-33 s per run; dx 0.2 -> 0.1 changes u_sd by <= 3.8e-5). u_sd:
 #   w     angle  dx 0.1 (ref)  kappa     coarse (dx 0.6)  coarse - ref  dx 0.3 (dW = 10)  coarse kappa  Eq.13 seed kappa
 #   0.15  0      0.2367005     0.933051  0.2371462        +4.5e-4       0.2366647         0.948         0.23875
 #   0.3   0      0.2755317     1.008519  0.2748317        -7.0e-4       0.2755737         1.000         0.27481
@@ -121,9 +126,8 @@ def test_run_file_name_is_deterministic_safe_and_tracks_the_scene(base, tmp_path
 # w = 0.15 and 0.017-0.019 at w = 0.3 (dkappa/du_sd = 31-33 and 10.5-11.8: kappa multiplies w u_sd, small at small
 # w). Eq. 13 with the seed's kappa (last column) is off the reference by +2.1e-3 / -7.2e-4 / -3.4e-4 / -5.8e-3:
 # with the seed's kappa this check fails in two of the four cases only (parallel w = 0.15 just: 1.60e-3, as the
-# coarse grid's own +4.5e-4 cancels part of it; tried 2026-11-25); the seed-kappa finding is tested at paper
-# resolution (tests/cases/test_rolling_paper.py).
-KAPPA_3D_FT03 = {(0.15, 0): 0.933051, (0.3, 0): 1.008519, (0.15, 90): 1.110806, (0.3, 90): 1.162810}
+# coarse grid's own +4.5e-4 cancels part of it); the seed-kappa finding is tested at paper resolution
+# (tests/cases/test_rolling_paper.py).
 COARSE_USD_TOL = 1.6e-3
 
 
@@ -138,11 +142,7 @@ def test_sweep_2x2x2_writes_8_runs_and_a_summary_with_the_physical_states(refere
         assert r["status"] == "complete" and is_complete(out / r["file"])
         if r["load.ft"] == 0.3:
             assert r["state"] == "shakedown" and r["periods_to_shakedown"] >= 1
-            # rolling adds displacement to the static shift (seed Fig. 8), and u_sd follows seed Eq. 13 with the
-            # converged 3-D kappa of that point within the coarse grid's discretisation error (see KAPPA_3D_FT03)
-            expected = L.u_shakedown(0.3, r["motion.w"], KAPPA_3D_FT03[(r["motion.w"], r["motion.angle"])])
-            assert L.u_stat(0.3) < r["u_sd"]
-            assert abs(r["u_sd"] - expected) < COARSE_USD_TOL, (r, expected)
+            assert L.u_stat(0.3) < r["u_sd"]      # rolling adds displacement to the static shift (seed Fig. 8)
         else:
             assert r["state"] == "ratcheting" and r["du"] > 0.05 and r["u_sd"] is None
         assert r["steps"] == 26 and r["iterations"] > 0 and r["wall_time"] > 0
@@ -155,6 +155,17 @@ def test_sweep_2x2x2_writes_8_runs_and_a_summary_with_the_physical_states(refere
         assert list(h5.attrs["varied"]) == keys
         assert np.array_equal(h5["runs/load.ft"][()], [r["load.ft"] for r in rows])
         assert [s.decode() for s in h5["runs/state"][()]] == [r["state"] for r in rows]
+
+
+@pytest.mark.regression
+def test_shaken_down_sweep_runs_follow_eq_13_with_the_converged_3d_kappa(reference_sweep):
+    """u_sd of the four shaken-down coarse runs against seed Eq. 13 with the kappa of KAPPA_3D_FT03, within the
+    coarse grid's discretisation error COARSE_USD_TOL (see above)."""
+    rows = [r for r in read_summary(reference_sweep.outdir / "summary.csv") if r["load.ft"] == 0.3]
+    assert len(rows) == 4
+    for r in rows:
+        expected = L.u_shakedown(0.3, r["motion.w"], KAPPA_3D_FT03[(r["motion.w"], r["motion.angle"])])
+        assert abs(r["u_sd"] - expected) < COARSE_USD_TOL, (r, expected)
 
 
 def test_second_identical_sweep_skips_every_run_and_touches_no_run_file(base, reference_sweep):
@@ -171,7 +182,7 @@ def test_second_identical_sweep_skips_every_run_and_touches_no_run_file(base, re
 def test_changed_set_gives_new_files_instead_of_reusing_old_ones(base, tmp_path):
     vary = ["load.ft=0.3", "motion.w=0.15"]
     first = run_sweep(base, vary, tmp_path, overrides=COARSE, jobs=1, progress=None)
-    with pytest.raises(OutputExistsError, match="summary.h5 belongs to another sweep .its overrides differ.*--overwrite"):
+    with pytest.raises(OutputExistsError, match="summary.h5 belongs to another sweep .its overrides differ.*pass overwrite=True"):
         run_sweep(base, vary, tmp_path, overrides=COARSE + ["motion.periods=4"], jobs=1, progress=None)
     second = run_sweep(base, vary, tmp_path, overrides=COARSE + ["motion.periods=4"], jobs=1, progress=None,
                        overwrite=True)
@@ -199,8 +210,8 @@ def test_grid_over_the_element_limit_fails_that_run_only(base, tmp_path):
     """dx = 1e-5 mm (dy = 0.6 mm) over the ~12 mm swept contact needs ~25e6 > 2048^2 elements: a valid scene
     that bem.grid refuses at run time (no run file; the summary row carries the message)."""
     report = run_sweep(base, ["grid.dx=0.6,1e-5"], tmp_path,
-                       overrides=COARSE + ["load.ft=0.3", "motion.w=0.15", "motion.periods=1"], jobs=1,
-                       progress=None)
+                       overrides=[s for s in COARSE if not s.startswith("grid.dx")]
+                       + ["load.ft=0.3", "motion.w=0.15", "motion.periods=1"], jobs=1, progress=None)
     rows = _by_values(report.rows, ["grid.dx"])
     assert rows[(0.6,)]["status"] == "complete"
     bad = rows[(1e-5,)]
@@ -326,14 +337,18 @@ def test_limit_search_in_worker_processes_matches_the_serial_search(base, tmp_pa
     assert len(read_summary(tmp_path / "parallel" / "limits.csv")) == 2
 
 
-def test_a_set_of_the_other_spelling_of_a_varied_key_is_refused(base, tmp_path):
-    """--vary load.ft with --set load.Ft contradicts every run: refused before anything runs, naming both; nothing
-    is written. A --set of the varied key itself is a base value the varied values replace."""
-    with pytest.raises(SceneError, match=r"--set 'load.Ft=5' and --vary load.ft: two spellings of one quantity"):
+def test_a_set_of_a_varied_key_or_its_other_spelling_is_refused(base, tmp_path):
+    """--vary load.ft with --set load.Ft, or with --set load.ft, would have the --set replaced in every run: refused
+    before anything runs, naming both; nothing is written. So is --vary load.Ft on a scene that gives load.ft."""
+    with pytest.raises(SceneError, match=r"overrides 'load.Ft=5' and vary load.ft: two spellings of one quantity"):
         plan_sweep(base, [parse_vary("load.ft=0.2,0.4")], tmp_path / "out", ["load.Ft=5"])
+    with pytest.raises(SceneError, match=r"overrides 'load.ft=0.3' and vary load.ft: the same key; the sweep sets "
+                                         r"load.ft in every run"):
+        plan_sweep(base, [parse_vary("load.ft=0.2,0.4")], tmp_path / "out", ["load.ft=0.3"])
+    with pytest.raises(SceneError, match=r"vary load.Ft: the scene gives load.ft = 0.46, the same quantity in its "
+                                         r"other spelling; vary load.ft"):
+        plan_sweep(default_scene(), [parse_vary("load.Ft=2,4")], tmp_path / "out", [])
     assert not (tmp_path / "out").exists()
-    runs = plan_sweep(base, [parse_vary("load.ft=0.2,0.4")], tmp_path / "out", ["load.ft=0.3"])
-    assert [Scene.from_toml_text(r.scene_toml).f_t for r in runs] == [0.2, 0.4]
 
 
 def test_limit_search_refuses_varying_both_or_neither_coordinate(base, tmp_path):
@@ -344,9 +359,9 @@ def test_limit_search_refuses_varying_both_or_neither_coordinate(base, tmp_path)
 
 
 def test_a_worker_still_compiles_numba_code_after_its_set_up():
-    # Regression: the worker set-up used to change NUMBA_NUM_THREADS after numba was imported, and every later
-    # compilation in that worker then raised RuntimeError - which a sweep meets whenever numba's on-disk cache
-    # misses (a fresh install, or edited sources): all runs failed. A fresh njit function forces a compilation.
+    # A worker set-up that changes NUMBA_NUM_THREADS after numba is imported makes every later compilation in that
+    # worker raise RuntimeError, which a sweep meets whenever numba's on-disk cache misses (a fresh install, or
+    # edited sources): all runs would fail. A fresh njit function forces a compilation.
     code = ("import os, numba; from rollcontact.cases.sweep.workers import _worker_init; _worker_init(os.getpid()); "
             "print(numba.njit(lambda x: x + 1)(1))")
     out = subprocess.run([sys.executable, "-c", code], cwd=Path(__file__).resolve().parents[2],

@@ -1,4 +1,4 @@
-"""Every dataset of every file rollcontact writes carries a `units` attribute (README, "HDF5 layout").
+"""Every dataset of every file rollcontact writes carries a `units` attribute (docs/hdf5_schema.md).
 
 Real files on a coarse grid: a BEM run, an MDR run, a sweep's summary.h5 and a limit search's limits.h5.
 """

@@ -1,5 +1,6 @@
 """Shared set-up of the tangential solver tests (test_tangential_*.py): the seed's Hertz contact, its closed forms
-and the element-by-element check of Coulomb's law and the force balance (theory.md §5, closed forms §7.2).
+and the element-by-element check of Coulomb's law and the force balance (docs/theory.md §5, closed forms docs/theory.md
+§7.2).
 
 Scene of the seed (Table 1): rigid-ish sphere R = 40 mm (steel) on rubber (E = 4.35 MPa, nu = 0.5), Fn = 21.19 N,
 mu = 0.93; the pressure comes from `solve_normal`, so sum(mu p) dA = mu Fn exactly. Units mm, N, MPa.
@@ -36,7 +37,7 @@ class Scene:
 
 
 def check_invariants(result, bound, op, previous, force=None, extra=None, tol=1e-8, alignment=0.999):
-    """Coulomb's law and the force balance, element by element (theory §5.1), on the slip recomputed from the
+    """Coulomb's law and the force balance, element by element (docs/theory.md §5.1), on the slip recomputed from the
     returned traction, s = A (tau - tau') + e - dU (one product here; the solver's own `slip` field is zero in
     stick by construction, so it cannot show a stick violation):
 

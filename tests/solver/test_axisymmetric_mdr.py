@@ -1,5 +1,5 @@
 """The axisymmetric profiles (solver.rolling.axisymmetric) and their exact MDR answers (solver.mdr.exact) against
-the transform that defines g(s) and the closed forms of theory.md §7.1-7.2 and §11.4. Units mm, N, MPa.
+the transform that defines g(s) and the closed forms of docs/theory.md §7.1-7.2 and §11.4. Units mm, N, MPa.
 
 The seed's materials (steel on rubber, E* = 5.80 MPa) and Fn = 21.19 N; the profiles of the scene tests: cone
 slope 6 deg, power law n = 4 with R = 10 mm, flat punch b = 4 mm with edge radius R = 5 mm.
@@ -23,7 +23,7 @@ PROFILES = [ConeProfile(6.0), PowerProfile(4.0, 10.0), RoundedFlatProfile(4.0, 5
 
 @pytest.mark.parametrize("profile", PROFILES, ids=lambda p: type(p).__name__)
 def test_mdr_profile_is_the_transform_of_the_profile(profile):
-    """g(s) = s int_0^s h'(r)/sqrt(s^2 - r^2) dr (theory §8.1), computed by quadrature in r = s sin(t) (which
+    """g(s) = s int_0^s h'(r)/sqrt(s^2 - r^2) dr (docs/theory.md §8.1), computed by quadrature in r = s sin(t) (which
     removes the inverse square root) with h' by central differences of `radial`: agreement to 1e-7 relative (the
     difference quotient's error, step 1e-6 mm); g' against a difference quotient of g and G against the
     quadrature of g to 1e-7."""
@@ -58,7 +58,7 @@ def test_power_law_n2_is_hertz_and_cattaneo_mindlin():
 
 
 def test_cone_and_power_law_closed_forms():
-    """Theory §11.4: cone d = (pi/2) a tan(s), Fn = (pi/2) E* a^2 tan(s), p(r) = (E* tan(s)/2) arccosh(a/r)
+    """docs/theory.md §11.4: cone d = (pi/2) a tan(s), Fn = (pi/2) E* a^2 tan(s), p(r) = (E* tan(s)/2) arccosh(a/r)
     (Love 1939 / Sneddon); power law n = 4: d = 2 a^4/(3 R^3), Fn = 16 E* a^5/(15 R^3). To 1e-12 (1e-8 for the
     pressure by quadrature)."""
     cone = MDRContact(ConeProfile(6.0), E, FN)
@@ -101,7 +101,7 @@ def test_bad_profiles_are_refused_with_the_parameter_named(make, message):
 
 
 def test_shakedown_closed_form_for_n2_is_seed_eq_12():
-    """theory §8.3 written for any profile (MDRTangential.shakedown_shift, limit) reduces for the sphere to seed
+    """docs/theory.md §8.3 written for any profile (MDRTangential.shakedown_shift, limit) reduces for the sphere to seed
     Eq. 12 with kappa = 3/2, f_t = 1 - 1.5 w u_sd - (1 - u_sd)^(3/2), and to f_t,lim = 1 - 1.5 w + 0.5 w^3,
     u_lim = 1 - w^2 (to 1e-12; u_sd is a root found to 1e-14 a)."""
     tg = MDRTangential(MDRContact(PowerProfile(2.0, 40.0), E, FN), MU, G)

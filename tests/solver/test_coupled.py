@@ -1,4 +1,4 @@
-"""Nested normal/tangential (Panagiotopoulos) loop for coupled materials (theory.md §6.2 step 5).
+"""Nested normal/tangential (Panagiotopoulos) loop for coupled materials (docs/theory.md §6.2 step 5).
 
 Steel (E = 210e3 MPa, nu = 0.3) sphere R = 10 mm on aluminium (E = 70e3 MPa, nu = 0.33): Dundurs beta ~ -0.1.
 Fn = 100 N gives a ~ 0.24 mm; a 0.03 mm grid keeps the problem at ~20 x 20 elements. Units mm, N, MPa.

@@ -1,5 +1,5 @@
 """Spence's self-similar stick zone of a normally loaded Hertz contact of dissimilar materials, reproduced
-by the coupled (Panagiotopoulos) step solver (theory.md §6.2 step 5; reference
+by the coupled (Panagiotopoulos) step solver (docs/theory.md §6.2 step 5; reference
 `solver.analytic.spence_stick_ratio`).
 
 A sphere (R = 10 mm) is pressed onto a half-space of another material with no tangential force, the normal

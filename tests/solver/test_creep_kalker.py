@@ -1,4 +1,4 @@
-"""Kalker's creep coefficient table and its interpolation (theory.md §7.3, solver/creep/kalker.py)."""
+"""Kalker's creep coefficient table and its interpolation (docs/theory.md §7.3, solver/creep/kalker.py)."""
 import math
 
 import pytest
@@ -8,7 +8,7 @@ from rollcontact.solver.creep import kalker_coefficients, linear_creep_forces
 
 
 @pytest.mark.parametrize("ratio, nu, expected", [
-    (1.0, 0.5, (5.20, 3.98, 1.63)),      # the scene's circle (theory §7.3)
+    (1.0, 0.5, (5.20, 3.98, 1.63)),      # the scene's circle (docs/theory.md §7.3)
     (0.5, 0.25, (3.62, 3.01, 0.929)),
     (2.0, 0.0, (4.37, 4.37, 2.35)),      # b/a = 0.5 row
     (0.1, 0.5, (4.85, 2.53, 0.731)),

@@ -1,4 +1,4 @@
-"""Steady rolling with creepage and spin (solver/creep/steady.py) against the closed forms of theory.md §7.3, §7.4
+"""Steady rolling with creepage and spin (solver/creep/steady.py) against the closed forms of docs/theory.md §7.3, §7.4
 and §11.5: Kalker's linear theory (C11, C22, C23), Carter's two-dimensional solution on a slender ellipse, full
 sliding, and the solver's own contract (complementarity, warm starts, errors). Kalker's sign convention: forces on
 body 1, opposing the creepages. Identical bodies with G = 1 MPa (K = 0), Hertz pressure on the ellipse's cells.
@@ -27,7 +27,7 @@ def _ellipse(ratio, nu, n, ny=None, normal_force=1.0):
 
 def _linear_coefficients(ratio, nu, n):
     """C11, C22, C23 of the solver: -Fx/(G c^2 xi), -Fy/(G c^2 eta), -Fy/(G c^3 phi) with G = c = 1."""
-    problem, pressure = _ellipse(ratio, nu, n)  # default tol 1e-6: forces converged to ~1e-8 (benchmarks/README)
+    problem, pressure = _ellipse(ratio, nu, n)  # default tol 1e-6: forces converged to ~1e-8 (benchmarks/README.md)
     fx = solve_steady(problem, pressure, math.inf, xi=1e-3).force[0]
     fy = solve_steady(problem, pressure, math.inf, eta=1e-3).force[1]
     fs = solve_steady(problem, pressure, math.inf, phi=1e-3).force[1]
@@ -128,7 +128,7 @@ def test_sweep_budget_exhausted_raises_convergence_error():
 
 
 def _carter_traction(x, a, s, mu_p0):
-    """Carter's |tau_x|(x) (theory.md §7.4) for creepage s = R|xi|/(mu a): stick zone of half-width c = a(1 - s)
+    """Carter's |tau_x|(x) (docs/theory.md §7.4) for creepage s = R|xi|/(mu a): stick zone of half-width c = a(1 - s)
     at the leading edge x = a."""
     c = a * (1.0 - s)
     tau = mu_p0 * np.sqrt(np.clip(1 - (x / a) ** 2, 0, None))
@@ -154,9 +154,9 @@ def slender():
 
 @pytest.mark.parametrize("s", [0.2, 0.5, 0.8])
 def test_carter_traction_and_stick_zone_at_mid_length(slender, s):
-    """Mid-length row of the slender ellipse against Carter's 2-D traction: rms difference within 2 % of mu p0
-    (measured 0.5 / 0.7 / 1.1 % at s = 0.2 / 0.5 / 0.8; the pointwise difference peaks at the stick/slip kink, 2.5-6.6 %
-    in one cell), the stick zone one block at the leading edge with width 2c = 2a(1 - s) within 1.5 cells (measured
+    """Mid-length row of the slender ellipse against Carter's 2-D traction: rms difference within 1.1 % of mu p0, as
+    docs/creep_rolling.md states (measured 0.48 / 0.65 / 1.095 % at s = 0.2 / 0.5 / 0.8; the pointwise difference
+    peaks at the stick/slip kink, 2.5-6.6 % in one cell), the stick zone one block at the leading edge with width 2c = 2a(1 - s) within 1.5 cells (measured
     within 0.5 cells), and the row's force ratio sum tau / (mu sum p) within 2 % of Carter's 1 - (1 - s)^2
     (measured +0.9 / +0.8 / +0.6 %)."""
     problem, pressure, mu, p0, results = slender
@@ -166,7 +166,7 @@ def test_carter_traction_and_stick_zone_at_mid_length(slender, s):
     inside = pressure[j0] > 0
     tau = -res.traction[0, j0]
     carter = _carter_traction(x, 1.0, s, mu * p0)
-    assert np.sqrt(np.mean((tau - carter)[inside] ** 2)) < 0.02 * mu * p0
+    assert np.sqrt(np.mean((tau - carter)[inside] ** 2)) < 0.011 * mu * p0
     stick = np.nonzero(res.stick[j0])[0]
     assert stick[-1] == np.nonzero(inside)[0][-1] and np.all(np.diff(stick) == 1)
     assert abs(stick.size * problem.grid.dx - 2 * (1 - s)) <= 1.5 * problem.grid.dx

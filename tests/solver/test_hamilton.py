@@ -1,4 +1,5 @@
-"""Hamilton's closed form for the sliding Hertz sphere (solver/hamilton.py, theory.md §11.6): the frictionless axis,
+"""Hamilton's closed form for the sliding Hertz sphere (solver/hamilton.py, docs/theory.md §11.6): the frictionless
+axis,
 the surface tractions, the trailing-edge tension, near-axis continuity, scaling and refused input. The comparison with
 the point-load quadrature is in tests/bem/test_subsurface_sliding.py (where that reference lives)."""
 import numpy as np
@@ -11,7 +12,7 @@ from rollcontact.solver.hamilton import NEAR_AXIS, hamilton_stresses
 @pytest.mark.parametrize("nu", [0.0, 0.3, 0.5])
 def test_frictionless_axis_is_hertz_closed_form(nu):
     """mu = 0, r = 0: sigma_z = -p0/(1 + z^2/a^2), sigma_r = -p0 [(1 + nu)(1 - (z/a) atan(a/z)) - 1/(2 (1 + z^2/a^2))]
-    (theory.md §11.6), shears zero: to 1e-13 p0 (both exact). 1e-4 a off the axis (the near-axis cubic) the normal
+    (docs/theory.md §11.6), shears zero: to 1e-13 p0 (both exact). 1e-4 a off the axis (the near-axis cubic) the normal
     stresses move by O((r/a)^2) = 1e-8 (checked against 1e-7 p0) and the shears by O(r/a) (checked against 1e-3 p0).
     """
     a, p0 = 2.0, 3.0
@@ -29,7 +30,8 @@ def test_frictionless_axis_is_hertz_closed_form(nu):
 
 @pytest.mark.parametrize("mu", [0.0, 0.3, 0.5])
 def test_surface_tractions_are_the_applied_ones(mu):
-    """At z = 0: s_zz = -p, s_xz = -mu p, s_yz = 0 inside the contact and all three zero outside (theory.md §0 signs),
+    """At z = 0: s_zz = -p, s_xz = -mu p, s_yz = 0 inside the contact and all three zero outside (docs/theory.md §0
+    signs),
     to 1e-13 p0 (exact expressions, round-off only; no point within the near-axis zone)."""
     a, p0, nu = 1.5, 2.0, 0.3
     x, y = np.meshgrid(np.linspace(-2.0, 2.0, 81) * a + 0.0323, np.linspace(-1.7, 1.7, 35) * a)

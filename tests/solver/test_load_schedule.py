@@ -1,4 +1,4 @@
-"""Loads oscillating within each period (theory.md §11.2-11.3): the schedule of the path, its refusals, and the
+"""Loads oscillating within each period (docs/theory.md §11.2-11.3): the schedule of the path, its refusals, and the
 Mindlin-Deresiewicz hysteresis loop and dissipated energy without rolling, on the 3-D model."""
 import numpy as np
 import pytest
@@ -13,7 +13,8 @@ from rollcontact.solver.tangential import TangentialParams
 
 FN, MU, R = 21.19, 0.93, 40.0
 PAPER = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
-# two identical bodies with nu = 0: beta = 0 and no tau_y, the case in which Mindlin's solution is exact (P10);
+# two identical bodies with nu = 0: beta = 0 and no tau_y, the case in which Mindlin's solution is exact (docs/theory.md
+# P10);
 # E chosen so that E* equals the paper's (same a, d, p0)
 NU0 = MaterialPair.from_moduli(2 * PAPER.E_star, 0.0, 2 * PAPER.E_star, 0.0)
 
@@ -90,7 +91,7 @@ def md_cycle(op, x, steps_per_period=24):
 
 
 def md_branches(cm, x, f):
-    """Closed-form U on the second period's branches (theory §11.2): reloading to +F* for k <= N/4, unloading to
+    """Closed-form U on the second period's branches (docs/theory.md §11.2): reloading to +F* for k <= N/4, unloading to
     -F* for N/4 <= k <= 3N/4, reloading again after."""
     N = f.size
     k = np.arange(1, N + 1)
@@ -102,10 +103,10 @@ def md_branches(cm, x, f):
 @pytest.mark.parametrize("materials", ["nu0", "paper"])
 @pytest.mark.parametrize("x", [0.3, 0.6, 0.9])
 def test_mindlin_deresiewicz_hysteresis_loop_on_the_default_grid(ops, materials, x):
-    # Mindlin-Deresiewicz loop (theory §11.2, Johnson 1985 §7.4): on the closed cycle U follows the unloading
+    # Mindlin-Deresiewicz loop (docs/theory.md §11.2, Johnson 1985 §7.4): on the closed cycle U follows the unloading
     # and reloading branches. Tolerance 1 % of U(F*) at the default grid (a/12): measured at most 0.23 % (nu = 0,
     # where the closed form is exact; 0.04 % at a/24, 0.006 % at a/48) and 0.38 % (paper materials, nu2 = 0.5,
-    # where Mindlin's solution is itself a few 0.1 % off, P10: 0.34 % at a/48).
+    # where Mindlin's solution is itself a few 0.1 % off, docs/theory.md P10: 0.34 % at a/48).
     op = ops[0.4][materials]
     cm = CattaneoMindlin(HertzSphere(R, op.materials.E_star, FN), MU, op.materials.G_star)
     path, U, _ = md_cycle(op, x)
@@ -116,14 +117,15 @@ def test_mindlin_deresiewicz_hysteresis_loop_on_the_default_grid(ops, materials,
 
 @pytest.mark.parametrize("x", [0.3, 0.6, 0.9])
 def test_mindlin_deresiewicz_dissipation_per_cycle_on_the_papers_grid(ops, x):
-    # Energy dissipated per closed cycle = 4 mu Fn U0 [6/5 - x - x (1-x)^(2/3) - (6/5)(1-x)^(5/3)] (theory §11.2),
+    # Energy dissipated per closed cycle = 4 mu Fn U0 [6/5 - x - x (1-x)^(2/3) - (6/5)(1-x)^(5/3)] (docs/theory.md
+    # §11.2),
     # exact for nu = 0. The sum of the frictional work over the second period (end-of-step traction times slip,
     # solver.rolling.energy) within 1 % on the paper's grid (dx = 0.2 mm = a/24): measured -0.84 / -0.13 / -0.06 %.
     # On a/12 the slip annulus of x = 0.3 is 0.11 a = 1.3 elements wide and the work is 4.4 % low (-1.4 % at 0.6,
     # -0.16 % at 0.9), so the check needs a/24, and a scene's default grid resolves the annulus (tests/cases/
     # test_oscillating_scenes.py); at a/48 all three are within 0.03 %. With the
     # paper's materials (nu2 = 0.5) the work converges to 1.4-1.7 % below the closed form (a/48), which is exact
-    # only for nu = 0 (P10): the loop's width is a difference of shifts, so their 0.3 % error grows there
+    # only for nu = 0 (docs/theory.md P10): the loop's width is a difference of shifts, so their 0.3 % error grows there
     # (docs/oscillating_loads.md).
     op = ops[0.2]["nu0"]
     cm = CattaneoMindlin(HertzSphere(R, op.materials.E_star, FN), MU, op.materials.G_star)

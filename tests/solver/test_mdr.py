@@ -1,6 +1,6 @@
-"""1-D MDR simulator of oscillating rolling (solver.mdr, mdr_step, _mdr_kernels, mdr_bisection; theory.md §8.2-8.3, seed Eqs. 4-5, 12).
+"""1-D MDR simulator of oscillating rolling (solver.mdr: step, _kernels, bisection; docs/theory.md §8.2-8.3, seed Eqs. 4-5, 12).
 
-Scene of the seed (Table 1, pitfalls P1-P5): R = 40 mm, mu = 0.93, Fn = 21.19 N, steel on rubber.
+Scene of the seed (Table 1, docs/theory.md P1-P5): R = 40 mm, mu = 0.93, Fn = 21.19 N, steel on rubber.
 Runtime: every run below takes 3-150 ms (numba kernel, ~40 us per step at 4001 springs).
 """
 import math
@@ -16,6 +16,8 @@ from rollcontact.solver.mdr._kernels import _approach_kernel, _rigid_shift_kerne
 from rollcontact.solver.mdr.simulate import simulate_mdr
 from rollcontact.solver.mdr.bisection import shakedown_limit_ft
 from rollcontact.solver.mdr.step import approach_for_force, rigid_shift
+
+from reference_data import RATCHET_RATIO
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
 SCENE = dict(R=40.0, E_star=PAIR.E_star, G_star=PAIR.G_star, Fn=21.19, mu=0.93)
@@ -60,7 +62,7 @@ def test_shakedown_displacement_converges_to_mdr_equilibrium_eq12(w, f_t):
     """Coarse (201 springs, dW = W/5) vs fine (1601 springs, dW = W/40).  Observed errors |u_sd - Eq. 12|:
     3.5e-5 / 5.0e-5 / 7.9e-5 coarse, 0.8e-7 / 1.4e-7 / 3.6e-7 fine.  The error is set by ds (it hardly
     changes with dW: the shaken-down state is fixed by the reversal points, which are hit exactly).
-    Asserted: fine error < 1e-5 (theory §8.3) and at least 10x below the coarse one: second order in ds would
+    Asserted: fine error < 1e-5 (docs/theory.md §8.3) and at least 10x below the coarse one: second order in ds would
     give (1600/200)^2 = 64x (measured 440 / 360 / 220x); 10x still demands an order above 1.1."""
     ref = L.u_shakedown(f_t, w, L.KAPPA_MDR)
     errors = []
@@ -75,16 +77,16 @@ def test_shakedown_displacement_converges_to_mdr_equilibrium_eq12(w, f_t):
 
 @pytest.mark.parametrize("w, f_t", [(0.1, 0.6), (0.23, 0.6), (0.4, 0.3)])
 def test_theory_claim_4001_springs_ten_periods_within_1e5(w, f_t):
-    # theory §8.3: 4001 springs reach Eq. 12 to 1e-5 within 5-10 periods (w = 0.23, f_t = 0.6 is the
-    # slowest: still du = 8e-6 after period 10, error 4e-6). Both bounds are the theory's claim, not fitted:
-    # measured 2026-11-25, periods_to_shakedown 3 / 7 / 6 and errors 2e-8 / 4.2e-6 / 7.7e-7.
+    # docs/theory.md §8.3: 4001 springs reach Eq. 12 to 1e-5 within 5-10 periods (w = 0.23, f_t = 0.6 is the
+    # slowest: still du = 8e-6 after period 10, error 4e-6). Both bounds are the theory's claim, not fitted
+    # (periods_to_shakedown 3 / 7 / 6 and errors 2e-8 / 4.2e-6 / 7.7e-7).
     r = run(f_t, w, nq=50, periods=10, n_springs=4001)
     assert r.state == "shakedown" and r.classification.periods_to_shakedown <= 10
     assert abs(r.classification.u_sd - L.u_shakedown(f_t, w)) < 1e-5
 
 
 def test_rigid_displacement_never_decreases_and_exceeds_static():
-    # theory §8.3: U is non-decreasing during the transient (every slip increases the anchors)
+    # docs/theory.md §8.3: U is non-decreasing during the transient (every slip increases the anchors)
     r = run(0.46, 0.23, n_springs=801)
     assert np.all(np.diff(r.history["U"]) >= -1e-12 * r.U0)
     # rolling adds u_sd - u_stat = 0.1439 (Eq. 12 minus Eq. 4); simulated to within the spring spacing's
@@ -99,7 +101,7 @@ def test_shakedown_limit_by_bisection_matches_mdr_closed_form(w):
     """Bisection in f_t (801 springs, dW = W/20, 40 periods, bracket 1e-3).  Observed: the closed form
     f_t,lim = 1 - 1.5 w + 0.5 w^3 lies inside the simulated bracket even at 2e-4 width, for 401-3201
     springs.  Asserted: inside the bracket widened by 2e-4 (allowance for ds and for the classification
-    tolerance 1e-4 close to the limit, where increments decay slowly, pitfall P12)."""
+    tolerance 1e-4 close to the limit, where increments decay slowly, docs/theory.md P12)."""
     b = shakedown_limit_ft(**SCENE, W=w * A, dW=w * A / 20, periods=40, f_t_lo=0.2, f_t_hi=0.95,
                            f_t_tol=1e-3, n_springs=801)
     ref = L.f_t_lim(w, L.KAPPA_MDR)
@@ -108,10 +110,10 @@ def test_shakedown_limit_by_bisection_matches_mdr_closed_form(w):
 
 
 # ------------------------------------------------------------------------------------- ratcheting
-# Pure-MDR ratcheting increment per period, as du / (sqrt(u_stat) (w - w_lim,MDR)) (theory §8.5). No closed form is
-# known to us, so the reference is the program's own converged value: 16001 springs, nq = W/dW = 400 and 1600,
-# extrapolated to dW -> 0 with order 1 (measured 2026-11-25 with run(f_t, w, nq=nq, n_springs=16001); the
-# extrapolation from nq = 100/400 agrees to 1e-5). Measured ratios:
+# Pure-MDR ratcheting increment per period, as du / (sqrt(u_stat) (w - w_lim,MDR)) (docs/theory.md §8.5). No closed form is
+# known to us, so the reference is the program's own converged value (regression data, tests/reference_data.py,
+# mdr_ratchet_ratio): 16001 springs, nq = W/dW = 400 and 1600, extrapolated to dW -> 0 with order 1 (the
+# extrapolation from nq = 100/400 agrees to 1e-5). Ratios:
 #   (w, f_t)     nq 25 (1001 springs)  nq 100    nq 400    nq 1600   dW -> 0   du / seed Eq. 21 (perpendicular)
 #   (0.3, 0.7)   4.58710               4.59888   4.60186   4.60261   4.60286   7.88
 #   (0.5, 0.5)   4.51402               4.53236   4.53701   4.53817   4.53856   8.52
@@ -122,14 +124,13 @@ def test_shakedown_limit_by_bisection_matches_mdr_closed_form(w):
 # 4x finer dW: about second order), plus the spring effect <= 2.5e-5 and the reference's own 1e-5: 1.35e-4,
 # rounded up to RATIO_TOL = 2e-4 (4e-5 relative). Extrapolating a first-order error as if it were second order
 # would be off by 3e-3 ... 6e-3, and the single nq = 25 run is off by 0.016-0.032: both fail it.
-# (This replaces the band 4.0 < ratio < 4.8, a range around the three cases that no error estimate had set.)
-RATCHET_RATIO = {(0.3, 0.7): 4.60286, (0.5, 0.5): 4.53856, (0.7, 0.3): 4.37761}
 RATIO_TOL = 2e-4
 
 
+@pytest.mark.regression
 @pytest.mark.parametrize("w, f_t", list(RATCHET_RATIO))
 def test_ratcheting_increment_is_the_pure_mdr_one_not_the_seed_regression(w, f_t):
-    """theory §8.5: pure-MDR increments ~ 4.4-4.6 sqrt(u_stat) (w - w_lim,MDR) per period, far above the seed's
+    """docs/theory.md §8.5: pure-MDR increments ~ 4.4-4.6 sqrt(u_stat) (w - w_lim,MDR) per period, far above the seed's
     regression fit (Eq. 21). The first is checked against the converged reference above, to RATIO_TOL."""
     scale = math.sqrt(L.u_stat(f_t)) * (w - L.w_lim(f_t, L.KAPPA_MDR))
     ratio = {}

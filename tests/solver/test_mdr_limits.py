@@ -1,4 +1,4 @@
-"""Closed forms of the MDR shakedown theory (seed Eqs. 4-5, 12-21; theory.md §8.3-8.5)."""
+"""Closed forms of the MDR shakedown theory (seed Eqs. 4-5, 12-21; docs/theory.md §8.3-8.5)."""
 import math
 
 import numpy as np
@@ -125,7 +125,7 @@ def test_fit_kappa_uncertainty_reflects_noise():
 
 
 def test_seed_ratcheting_regression_grows_with_load_and_amplitude():
-    # seed Eqs. 20-21 (empirical fits, theory §8.5): qualitative checks only
+    # seed Eqs. 20-21 (empirical fits, docs/theory.md §8.5): qualitative checks only
     assert L.ratcheting_increment(0.3, 0.5, "parallel") == 0.0          # w_lim(0.3) = 0.7 (Eq. 18)
     f, w = 0.77, 0.35
     par, perp = L.ratcheting_increment(f, w, "parallel"), L.ratcheting_increment(f, w, "perpendicular")

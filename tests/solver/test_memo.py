@@ -1,4 +1,4 @@
-"""The product memo shared by the solvers (solver/_memo.py): exact matching, reuse limit, capacity."""
+"""The product memo shared by the solvers (solver/memo.py): exact matching, reuse limit, capacity."""
 import numpy as np
 
 from rollcontact.bem import Grid, HalfSpaceOperator, MaterialPair

@@ -1,6 +1,6 @@
-"""Physics tests of the frictionless normal solver (solver/normal.py, theory.md §4, §7.1).
+"""Physics tests of the frictionless normal solver (solver/normal/normcg.py, docs/theory.md §4, §7.1).
 
-Scene of the seed paper (theory.md §1, §7.1): rigid-ish steel sphere R = 40 mm on rubber, E* = 5.79985 MPa,
+Scene of the seed paper (docs/theory.md §1, §7.1): rigid-ish steel sphere R = 40 mm on rubber, E* = 5.79985 MPa,
 Fn = 21.19 N -> a = 4.7857 mm, d = 0.572572 mm, p0 = 0.441756 MPa. Grids cover [-1.25 a, 1.25 a]^2 with
 world-fixed cells (a cell centre at the origin).
 """
@@ -48,7 +48,7 @@ def observed_order(spacings, errors):
 def test_hertz_sphere_at_paper_resolution_matches_closed_form():
     """dx = 0.2 mm (the seed's grid): peak pressure within 1 % of p0, contact area within 2 % of pi a^2
     (the brief's targets); measured 0.012 % and 0.12 %. The approach is within 0.01 % (measured
-    -0.0033 %); the equivalent contact radius sqrt(area/pi) within dx/2 of a (pitfall P11: counting
+    -0.0033 %); the equivalent contact radius sqrt(area/pi) within dx/2 of a (docs/theory.md P11: counting
     p > 0 cells overestimates the radius by up to ~dx/2)."""
     res = sphere_solution(0.2)
     dA = 0.2 * 0.2
@@ -156,7 +156,7 @@ def test_force_balance_and_complementarity():
 
 def test_prescribed_approach_reproduces_the_force_mode_solution():
     """Giving the approach d found with prescribed Fn must return the force Fn and the same pressure
-    (same unique solution of the LCP, theory.md §4.1); agreement to 1e-6 relative (both solves stop
+    (same unique solution of the LCP, docs/theory.md §4.1); agreement to 1e-6 relative (both solves stop
     at tol = 1e-8 on the pressure update; the force is the pressure's integral)."""
     op, h = sphere_case(0.2)
     by_force = sphere_solution(0.2)

@@ -1,4 +1,4 @@
-"""Classification of a run from its per-period displacements (solver.rolling.shakedown; theory §6.2)."""
+"""Classification of a run from its per-period displacements (solver.rolling.shakedown; docs/theory.md §6.2)."""
 import numpy as np
 import pytest
 

@@ -76,7 +76,7 @@ def check_static(pair, rx, ry, Fn, mu, f_t, dx):
 def test_cattaneo_near_traction_bound_converges(f_t, a_over_dx):
     nr, tr, grid = check_static(SCENE_PAIR, R, R, FN, MU, f_t, A / a_over_dx)
     cm = CattaneoMindlin(HertzSphere(R, SCENE_PAIR.E_star, FN), MU, SCENE_PAIR.G_star)
-    assert tr.shift_increment[0] == pytest.approx(cm.shift(f_t), rel=0.01)   # P10, P12: within 1 %
+    assert tr.shift_increment[0] == pytest.approx(cm.shift(f_t), rel=0.01)   # docs/theory.md P10, P12: within 1 %
 
 
 @pytest.mark.parametrize("mu", [0.05, 2.0])
@@ -190,7 +190,7 @@ def test_a_solve_that_cannot_converge_names_its_regime(coupled):
 
 def test_a_rolling_run_that_cannot_converge_keeps_its_steps_and_names_the_regime(tmp_path):
     """The near-bound rolling case with a budget of 3 products per solve: the run ends as 'failed' with the
-    ConvergenceError's regime in its error text (theory §6.2 step 4 cannot finish)."""
+    ConvergenceError's regime in its error text (docs/theory.md §6.2 step 4 cannot finish)."""
     scene = default_scene().with_overrides(["load.ft=0.99", "grid.dx=0.4", "grid.dy=0.4", "motion.dW=0.4",
                                             "motion.periods=1", "solver.max_iter=3"])
     d = run_scene(scene, tmp_path / "run.h5")

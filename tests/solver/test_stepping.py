@@ -1,4 +1,4 @@
-"""Time stepping of oscillating rolling (theory.md §6): the load path, memory, restarts, grid edge."""
+"""Time stepping of oscillating rolling (docs/theory.md §6): the load path, memory, restarts, grid edge."""
 import numpy as np
 import pytest
 
@@ -6,7 +6,7 @@ from rollcontact.bem import ContactEdgeError, Grid, HalfSpaceOperator, InputErro
 from rollcontact.solver.analytic import CattaneoMindlin, HertzSphere
 from rollcontact.solver.normal.normcg import solve_normal
 from rollcontact.solver.rolling.profiles import ArrayProfile, FunctionProfile, QuadricProfile
-from rollcontact.solver.rolling.stepping import StepParams, build_path, run_path
+from rollcontact.solver.rolling.stepping import build_path, run_path
 from rollcontact.solver.tangential.shift import solve_tangential
 
 PAIR = MaterialPair.from_moduli(206e3, 0.3, 4.35, 0.5)
@@ -54,7 +54,7 @@ def op():
 
 def test_without_motion_the_stepper_reproduces_the_static_cattaneo_solve(op):
     # w = 0: the stepper's last state must equal a direct normal + tangential solve (same equations,
-    # same tolerance): U agrees to the solver tolerance, and both lie within 1 % of Mindlin (P10).
+    # same tolerance): U agrees to the solver tolerance, and both lie within 1 % of Mindlin (docs/theory.md P10).
     f_t = 0.5
     F = np.array([f_t * MU * FN, 0.0])
     recs = list(run_path(op, QuadricProfile(R, R), build_path(force=F), Fn=FN, mu=MU))

@@ -1,4 +1,5 @@
-"""Closed forms of the transient tangential solver (theory.md §5, closed forms §7.2): Cattaneo-Mindlin stick
+"""Closed forms of the transient tangential solver (docs/theory.md §5, closed forms docs/theory.md §7.2):
+Cattaneo-Mindlin stick
 radius, shift and centre-line traction, Mindlin-Deresiewicz unloading, the traction capacity mu Fn, and the
 prescribed-shift mode against the force mode.
 
@@ -16,7 +17,7 @@ from tangential_helpers import FN, HERTZ, MINDLIN, MU, check_invariants
 def test_cattaneo_mindlin_stick_radius_and_shift(scene, f_t):
     """Cattaneo-Mindlin, one step from zero traction: stick radius c = a (1 - f_t)^(1/3) within one element
     along both centre lines; rigid shift within 1 % of U0 (1 - (1 - f_t)^(2/3)) (seed Eq. 4; nu = 0.5 makes the
-    closed form approximate to a few 0.1 %, pitfall P10, measured -0.1 .. -0.26 % here)."""
+    closed form approximate to a few 0.1 %, docs/theory.md P10, measured -0.1 .. -0.26 % here)."""
     res = scene.cattaneo(f_t)
     check_invariants(res, scene.bound, scene.op, scene.zero, force=(f_t * MU * FN, 0.0))
     c = MINDLIN.stick_radius(f_t)
@@ -53,7 +54,8 @@ def test_cattaneo_centre_line_traction_converges_under_refinement(scene, fine_sc
 def test_mindlin_deresiewicz_unloading_hysteresis(scene):
     """Load to f_t = 0.5 in one step, then reverse to -0.5 in 8 steps: the shift follows Mindlin-Deresiewicz
     U(f) = U(f_max) - 2 U((f_max - f)/2) (memory through tau'). Tolerance 0.5 % of U(f_max): the closed form
-    neglects the normal-tangential coupling of nu = 0.5 (P10: -0.13 % at the load, -0.1 .. -0.3 % over f_t),
+    neglects the normal-tangential coupling of nu = 0.5 (docs/theory.md P10: -0.13 % at the load, -0.1 .. -0.3 % over
+    f_t),
     which the reversal adds up along the loop (measured at most 0.16 % at every level and at the closure)."""
     f_max = 0.5
     res = scene.cattaneo(f_max)

@@ -1,4 +1,4 @@
-"""The tangential solver near the traction bound (f_t -> 1, pitfalls P10, P12) and beyond it: gross sliding
+"""The tangential solver near the traction bound (f_t -> 1, docs/theory.md P10, P12) and beyond it: gross sliding
 raises at once, loads near the bound (cold, turned, with no stick element left) converge to Mindlin's shift
 with Coulomb's law and the force balance intact, up to the issue's 511^2 grid (slow).
 
@@ -23,7 +23,7 @@ def test_gross_sliding_raises_immediately(scene):
 
 
 def test_near_traction_bound_shift_stays_accurate(scene):
-    """f_t = 0.99 and 0.999 (pitfall P12). At 0.999 the stick zone (c = 0.48 mm) holds no element; the shift is
+    """f_t = 0.99 and 0.999 (docs/theory.md P12). At 0.999 the stick zone (c = 0.48 mm) holds no element; the shift is
     then the displacement of the sub-element stick point, within 1 % of Mindlin (CONTACT: +7.3 %)."""
     for f_t in (0.99, 0.999):
         res = scene.cattaneo(f_t)
@@ -68,7 +68,8 @@ def test_warm_start_far_from_a_turned_load_near_the_bound_converges(scene):
 
 @pytest.mark.parametrize("f_t", [0.95, 0.99, 0.999])
 def test_cold_solve_near_the_bound_converges_on_the_fine_grid(fine_scene, f_t):
-    """Used to cycle between release and projection on fine grids; shift within 0.5 % of Mindlin (P10, P12).
+    """Used to cycle between release and projection on fine grids; shift within 0.5 % of Mindlin (docs/theory.md P10,
+    P12).
     Alignment as in test_near_traction_bound_shift_stays_accurate (stick-point shift at 0.999)."""
     res = fine_scene.cattaneo(f_t)
     check_invariants(res, fine_scene.bound, fine_scene.op, fine_scene.zero, force=(f_t * MU * FN, 0.0), alignment=0.99)
@@ -80,7 +81,8 @@ def test_cold_solve_near_the_bound_converges_on_the_fine_grid(fine_scene, f_t):
 def test_cold_solve_on_the_512_grid_converges(f_t):
     """The issue's largest grid (511^2, dx = 0.0211 mm): these cold solves failed after 500 products until slip
     elements with a large slip along their traction were turned against it instead of released (all elements
-    then ended in slip). Shift within 0.5 % of Mindlin (P10), Coulomb's law and the force balance intact."""
+    then ended in slip). Shift within 0.5 % of Mindlin (docs/theory.md P10), Coulomb's law and the force balance
+    intact."""
     big = Scene(0.0211)
     assert big.grid.shape == (511, 511)
     res = big.cattaneo(f_t, params=TangentialParams(max_iter=150))

@@ -187,7 +187,7 @@ def test_turns_of_reversed_slips_never_raise_the_energy(scene, dense, monkeypatc
     """The start of a profile step with previous_region (the contact moved by one cell, the previous slip ring
     put on the new bound) has 67 slip elements whose slip points along their traction and exceeds 2 a_self g.
     Turned whole and all at once they raised the step's energy threefold and the solve cycled; with the line
-    search on the energy (theory §5.1: the step is a convex program, so a turn that is a descent step must lower
+    search on the energy (docs/theory.md §5.1: the step is a convex program, so a turn that is a descent step must lower
     it) the energy falls, and the force is kept to round-off. Both curvature paths: one product (67^2 > 55^2
     elements) and the dense block of the turned elements (DENSE_TURNS raised to take 67 turns)."""
     from rollcontact.solver.tangential import _force_projection as FP

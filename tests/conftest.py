@@ -1,0 +1,16 @@
+"""Settings every test shares.
+
+Under pytest-xdist each worker process gets its own FFTW wisdom file (ROLLCONTACT_CACHE, bem.wisdom): FFTW_MEASURE
+chooses its algorithms by timing, so two processes planning the same transform at once may choose differently and
+give results that differ in the last bit; with the workers sharing one file, the wisdom a test's run processes
+load could change between them (a restarted run compared bit for bit with an uninterrupted one).
+"""
+import os
+from pathlib import Path
+
+
+def pytest_configure(config):
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    if worker and "ROLLCONTACT_CACHE" not in os.environ:
+        base = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "rollcontact"
+        os.environ["ROLLCONTACT_CACHE"] = str(base / f"pytest-{worker}")
