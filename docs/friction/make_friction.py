@@ -404,6 +404,60 @@ def study_figure(out: Path, rows: list):
     plt.close(fig)
 
 
+STUDY_COLUMNS = [("coulomb mu_static", "Coulomb mu_static"), ("coulomb mu_kin", "Coulomb mu_kin"),
+                 ("law s_1/V = 1", "1"), ("law s_1/V = 0.1", "0.1"), ("law s_1/V = 0.03", "0.03"),
+                 ("law s_1/V = 0.01", "0.01"), ("law s_1/V = 0.003", "0.003"),
+                 ("law s_1/V = 0.01, d_c = 0.02 mm", "0.01, d_c 0.02 mm"),
+                 ("law s_1/V = 0.01, d_c = 0.2 mm", "0.01, d_c 0.2 mm")]
+
+
+def page_tables(out: Path) -> str:
+    """The tables and numbers of docs/friction.md from the files the parts wrote into `out` (those present), as
+    Markdown; written to out/tables.md."""
+    text = []
+    v = out / "friction_validation.json"
+    if v.exists():
+        val = json.loads(v.read_text())
+        c = val["creep_curves"]
+        text.append(f"falling creep curve: peak {c['peak']:.3f} mu_static Fn at {c['peak_fraction']:.2f} xi*; "
+                    f"last point ({c['fractions'][-1]:.3g} xi*) {c['law'][-1]:.3f}, with memory "
+                    f"{c['law, d_c = 0.05 mm'][-1]:.3f}; Coulomb's there {c['coulomb'][-1]:.3f}\n")
+    c = out / "contact_examples.csv"
+    if c.exists():
+        with open(c) as fh:
+            rows = {(r["example"], r["case"]): r for r in csv.DictReader(fh)}
+        st, tr = rows[("veldep_fric", "steady")], rows[("veldep_fric", "transient from rest")]
+        ref = VELDEP_REF
+        text += ["| veldep_fric | F_x / (mu_static Fn) | stick / slip elements | p_max MPa |", "|---|---|---|---|",
+                 f"| steady, reference program | {ref['steady_Fx_over_muFn']:.4f} | {ref['steady_stick']} / "
+                 f"{ref['steady_slip']} | {ref['p_max']} |",
+                 f"| steady, rollcontact | {float(st['Fx_over_muFn']):.4f} | {st['stick_cells']} / {st['slip_cells']} | "
+                 f"{float(st['p_max']):.1f} |",
+                 f"| time steps from the steady state, reference program | {ref['transient_range'][0]:.4f} to "
+                 f"{ref['transient_range'][1]:.4f} | | |",
+                 f"| rolled from rest, rollcontact (last quarter of {tr['steps']} steps) | {float(tr['Fx_min']):.4f} "
+                 f"to {float(tr['Fx_max']):.4f} (mean {float(tr['Fx_over_muFn']):.4f}) | | |", "",
+                 f"sawtooth period {tr.get('sawtooth_period_steps') or '-'} steps; mean minus the reference program's "
+                 f"mid-range {float(tr['shift_of_mean']):+.4f}; solves per step {float(tr['solves_per_step']):.1f}; "
+                 f"feedback {float(st['friction_feedback']):.3f}\n"]
+    lim = out / "limits.csv"
+    if lim.exists():
+        with open(lim) as fh:
+            rows = list(csv.DictReader(fh))
+        ws = sorted({float(r["w"]) for r in rows})
+        have = [(k, h) for k, h in STUDY_COLUMNS if any(r["configuration"] == k for r in rows)]
+        text += ["| w | " + " | ".join(h for _, h in have) + " |", "|---" * (len(have) + 1) + "|"]
+        for w in ws:
+            cells = []
+            for k, _ in have:
+                r = next((r for r in rows if r["configuration"] == k and float(r["w"]) == w), None)
+                cells.append("-" if r is None else (f"{float(r['f_t_lim']):.3f}" if r["f_t_lim"] else r["status"]))
+            text.append(f"| {w:g} | " + " | ".join(cells) + " |")
+    md = "\n".join(text) + "\n"
+    (out / "tables.md").write_text(md)
+    return md
+
+
 def _write_csv(path: Path, rows: list):
     keys = list(dict.fromkeys(k for r in rows for k in r))
     with open(path, "w", newline="") as fh:
@@ -434,6 +488,7 @@ def main(argv=None):
                       load_after=os.getloadavg(), date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()))
         name = f"friction_{part}{'_quick' if args.quick else ''}.json"
         (args.out / name).write_text(json.dumps(result, indent=1, default=str))
+    print(page_tables(args.out))
     print(f"written to {args.out}")
     return 0
 

@@ -150,3 +150,31 @@ def test_creep_curve_takes_a_friction_law_and_falls_beyond_its_peak(tmp_path):
     assert {"mu_min", "slip_velocity_max", "frictional_power"} <= set(header)
     assert "exponential" in open(path).readline()
     assert all(p.stat().st_size > 0 for p in plot_curve(table, tmp_path, "curve"))
+
+
+def test_friction_laws_and_temperatures_with_the_other_models_are_refused_or_combined():
+    """Viscoelastic bodies take neither a [friction] section nor [thermal] (the slip-velocity iteration and the
+    temperatures are of elastic half-spaces); [thermal] needs the boundary elements; a law other than Coulomb's
+    needs them too; Coulomb's law gives its mu to a fast model like load.mu; a wheel-rail scene takes neither."""
+    sls = {"visco2": "sls", "E2": 43.5, "E2_relaxed": 4.35, "tau2": 1.0}
+    with pytest.raises(SceneError, match=r"\[friction\] with materials.visco2 = 'sls'.*\[load\] mu"):
+        Scene.from_dict({"geometry": {"R": 40.0}, "motion": {"w": 0.2, "speed": 1.0}, "materials": sls,
+                         "friction": {"law": "coulomb", "mu": 0.5}})
+    with pytest.raises(SceneError, match=r"\[thermal\] with materials.visco2 = 'sls'"):
+        rolling(materials=sls, thermal=THERMAL)
+    with pytest.raises(SceneError, match=r"\[thermal\] with \[solver\] fidelity = 'fastsim'.*'bem'"):
+        rolling(thermal=THERMAL, solver={"fidelity": "fastsim"})
+    with pytest.raises(SceneError, match=r"fidelity = 'fastsim' with \[friction\] law = 'exponential'.*'bem'"):
+        rolling(friction={"law": "exponential", "mu_kin": 0.2, "mu_1": 0.1, "s_1": 100.0},
+                solver={"fidelity": "fastsim"})
+    fast = rolling(friction={"law": "coulomb", "mu": 0.25}, solver={"fidelity": "fastsim"})
+    assert fast.load.mu == 0.25 and rollcontact.run(fast).summary["mu_Fn"] == pytest.approx(0.25 * 20e3, rel=1e-9)
+    with pytest.raises(SceneError, match=r"\[friction\] with \[wheelrail\]"):
+        Scene.from_dict({"wheelrail": {"wheel_radius": 460.0}, "friction": {"law": "coulomb", "mu": 0.3}})
+
+
+def test_creep_curve_of_a_law_refuses_the_fast_models(tmp_path):
+    scene = rolling(friction={"law": "exponential", "mu_kin": 0.2, "mu_1": 0.1, "s_1": 100.0})
+    with pytest.raises(rollcontact.InputError, match=r"fidelity.*'fastsim'.*one coefficient of friction"):
+        rollcontact.creep_curve(scene, points=3, output=tmp_path, fidelity=["bem", "fastsim"])
+    assert not any(tmp_path.iterdir())
