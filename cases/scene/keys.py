@@ -40,6 +40,8 @@ SECTION_MODES = {
     "load": ("oscillating", "mdr"),
     "motion": ("oscillating", "mdr"),
     "rolling": ("steady", "transient"),
+    "friction": ("oscillating", "steady", "transient"),
+    "thermal": ("steady", "transient"),
     "wheelrail": ("wheelrail",),
     "grid": ("oscillating", "steady", "transient"),
     "solver": ("oscillating", "steady", "transient"),
@@ -52,6 +54,11 @@ SECTION_DOCS = {
     "load": "the normal force, the friction coefficient and the tangential load path",
     "motion": "the oscillating rolling: amplitude, direction relative to Ft, periods, step",
     "rolling": "rolling on with creepage and spin, steady or transient (excludes [motion] and a tangential load)",
+    "friction": "a friction law in place of [load] mu: falling with the slip velocity, with memory, or with the "
+                "surface temperature (docs/friction.md); the boundary elements only (law 'coulomb' also with the "
+                "fast models; neither with viscoelastic bodies nor [wheelrail])",
+    "thermal": "surface temperatures of both bodies heated by the frictional power, in [rolling] scenes with "
+               "rolling.speed (docs/friction.md)",
     "wheelrail": "a wheel on a rail: the profiles, the track, the wheelset's position, load and motion",
     "grid": "the boundary-element grid: element size and margin around the swept contact",
     "solver": "tolerances, budgets, model fidelity, threads and the normal-tangential coupling",
