@@ -10,12 +10,13 @@ Writes into DIR (default results/friction/; the committed figures: -o docs/frict
 * contact: the reference program's examples ertz_temperature (cases 1-4) and veldep_fric (the steady state, then
   rolled from rest) posed in rollcontact (docs/friction/*.toml) against the figures of their ref_out files
   (contact_examples.csv, veldep_transient.png).
-* study: the seed's scene (perpendicular rolling, dx = dW = 0.2 mm, 10 periods) at motion.speed = V = 10 mm/s with
-  mu_static = 0.93 and the exponential law mu_kin = 0.62, mu_1 = 0.31 (mu(s) = 0.62 + 0.31 2^(-s/s_1)): the
-  shakedown limit f_t,lim(w) = Ft,lim/(mu_static Fn) for s_1 / V = 1, 0.1, 0.03, 0.01, 0.003, with friction memory
-  (d_c = 0.02 and 0.2 mm at s_1 / V = 0.01), and with
-  Coulomb's law at mu_static and at mu_kin (limits.csv, study_limits.png; the probe runs under --runs).
-  About 40 min on 2 cores at --jobs 2; --quick: one w, tol 0.05, 3 periods (the docs test).
+* study: the seed's scene (perpendicular rolling, 10 periods, dW = 0.2 mm) on a coarse grid, dx = 0.4 mm (12
+  elements per contact radius against the page's default 0.2 mm: the study compares laws on one grid), at
+  motion.speed = V = 10 mm/s with mu_static = 0.93 and the exponential law mu_kin = 0.62, mu_1 = 0.31 (mu(s) = 0.62 +
+  0.31 2^(-s/s_1)): the shakedown limit f_t,lim(w) = Ft,lim/(mu_static Fn) at w = 0.1, 0.23, 0.35, 0.5, 0.7 by
+  bisection to 0.02, for s_1 / V = 1, 0.1, 0.03, 0.01, 0.003, with friction memory (d_c = 0.02 and 0.2 mm at s_1 / V
+  = 0.01), and with Coulomb's law at mu_static and at mu_kin (limits.csv, study_limits.png; the probe runs under
+  --runs). About 25 min on 2 loaded cores at --jobs 2; --quick: one w, tol 0.05, 3 periods (the docs test).
 """
 from __future__ import annotations
 
@@ -32,6 +33,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 V = 10.0                                   # mm/s, the study's rolling speed
+STUDY_GRID = {"grid.dx": 0.4}              # the study's coarse grid (module docstring)
 MU_STATIC, MU_KIN = 0.93, 0.62
 
 
@@ -345,9 +347,9 @@ def veldep(quick: bool):
 # ------------------------------------------------------------------------------------------------ study
 def study_configurations(quick: bool) -> dict:
     """name -> (overrides of the paper scene, factor converting its f_t into units of mu_static Fn)."""
-    law = {"motion.speed": V, "friction.law": "exponential", "friction.mu_kin": MU_KIN, "friction.mu_1": MU_STATIC - MU_KIN}
-    configs = {"coulomb mu_static": ({}, 1.0),
-               "coulomb mu_kin": ({"load.mu": MU_KIN}, MU_KIN / MU_STATIC)}
+    law = {**STUDY_GRID, "motion.speed": V, "friction.law": "exponential", "friction.mu_kin": MU_KIN, "friction.mu_1": MU_STATIC - MU_KIN}
+    configs = {"coulomb mu_static": ({**STUDY_GRID}, 1.0),
+               "coulomb mu_kin": ({**STUDY_GRID, "load.mu": MU_KIN}, MU_KIN / MU_STATIC)}
     ratios = (1.0, 0.01) if quick else (1.0, 0.1, 0.03, 0.01, 0.003)
     for r in ratios:
         configs[f"law s_1/V = {r:g}"] = ({**law, "friction.s_1": r * V}, 1.0)
@@ -361,7 +363,7 @@ def study_configurations(quick: bool) -> dict:
 def study(out: Path, quick: bool, jobs: int, runs: Path) -> dict:
     import rollcontact
     ws = [0.23] if quick else [0.1, 0.23, 0.35, 0.5, 0.7]
-    tol = 0.05 if quick else 0.01
+    tol = 0.05 if quick else 0.02
     rows = []
     for name, (over, factor) in study_configurations(quick).items():
         over = dict(over)
