@@ -402,7 +402,9 @@ def study_figure(out: Path, rows: list):
             style = "k-" if name == "coulomb mu_static" else ("k--" if name == "coulomb mu_kin" else "o-")
             ax.plot(w, f, style, label=name, ms=4)
     ax.set(xlabel="w = W/a", ylabel="f_t,lim = Ft,lim / (mu_static Fn)",
-           title=f"shakedown limit, exponential law mu(s) = {MU_KIN} + {MU_STATIC - MU_KIN:.2f} 2^(-s/s_1), V = {V:g} mm/s")
+           title=f"shakedown limit (dx = 0.4 mm), exponential law mu(s) = {MU_KIN} + {MU_STATIC - MU_KIN:.2f} "
+                 f"2^(-s/s_1), V = {V:g} mm/s")
+    ax.title.set_fontsize(9)
     ax.legend(fontsize=7)
     fig.savefig(out / "study_limits.png", dpi=110)
     plt.close(fig)
@@ -455,7 +457,8 @@ def page_tables(out: Path) -> str:
             cells = []
             for k, _ in have:
                 r = next((r for r in rows if r["configuration"] == k and float(r["w"]) == w), None)
-                cells.append("-" if r is None else (f"{float(r['f_t_lim']):.3f}" if r["f_t_lim"] else r["status"]))
+                cells.append("-" if r is None else (f"{float(r['f_t_lim']):.3f}" if r["f_t_lim"] else r["status"])
+                             + (" (u)" if r is not None and r["status"] == "widened" else ""))
             text.append(f"| {w:g} | " + " | ".join(cells) + " |")
     md = "\n".join(text) + "\n"
     (out / "tables.md").write_text(md)
