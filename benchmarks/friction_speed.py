@@ -16,7 +16,7 @@
 Process CPU time (the machine is shared: wall time includes waiting for a core), medians of --repeats after one
 warm-up (numba kernels compiled and FFTW plans made); the ratio to the run without the law in the same process is the
 figure to compare across machines. --quick: one repeat, the paper scene over 3 periods. Writes DIR/friction_speed.json
-(default results/friction_speed/; the committed JSON: -o benchmarks/results) with the machine's load (os.getloadavg) before and after.
+(default results/benchmarks/; the committed JSON: -o benchmarks/results) with the machine's load (os.getloadavg) before and after.
 """
 from __future__ import annotations
 
@@ -118,8 +118,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="one repeat; the paper scene over 3 periods")
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("-o", "--out", type=Path, default=Path("results") / "friction_speed",
-                    help="output folder (default results/friction_speed; the committed figures: benchmarks/results)")
+    ap.add_argument("-o", "--out", type=Path, default=Path("results") / "benchmarks",
+                    help="output folder (default results/benchmarks; the committed figures: benchmarks/results)")
     args = ap.parse_args(argv)
     repeats = 1 if args.quick else args.repeats
     load = os.getloadavg()
