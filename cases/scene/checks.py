@@ -155,6 +155,28 @@ class SceneChecks:
                              "model and the fast models (and the maps of 'auto') have no viscoelastic bodies; allowed "
                              "value is 'bem'")
 
+    def _check_friction_models(self, data: dict):
+        """[friction] laws and [thermal] (docs/friction.md) with the other models: a wheel-rail scene takes neither
+        (its patches use load.mu); viscoelastic bodies take neither (the slip-velocity iteration and the contact
+        temperatures are of elastic half-spaces: [load] mu there); [thermal] needs the boundary elements (the fast models have no
+        slip-velocity field to heat with). A law other than 'coulomb' with another fidelity is refused by
+        cases.scene.friction.check_friction; 'coulomb' gives load.mu to any model."""
+        given = [f"[{sec}]" for sec in ("friction", "thermal") if data.get(sec)]
+        if not given:
+            return
+        if "wheelrail" in data or self.wheelrail_on:
+            raise SceneError(f"{' and '.join(given)} with [wheelrail]: friction laws and surface temperatures are not "
+                             "supported in wheel-rail scenes (each patch takes load.mu); remove "
+                             f"{' and '.join(given)}")
+        if self.viscoelastic:
+            keys = [f"materials.visco{i}" for i in (1, 2) if getattr(self.materials, f"visco{i}") == "sls"]
+            raise SceneError(f"{' and '.join(given)} with {', '.join(keys)} = 'sls': friction laws and surface "
+                             "temperatures are for elastic bodies; remove the viscoelastic keys, or give the "
+                             f"coefficient as [load] mu and remove {' and '.join(given)}")
+        if data.get("thermal") and self.solver.fidelity != "bem":
+            raise SceneError(f"[thermal] with [solver] fidelity = {self.solver.fidelity!r}: the surface temperatures "
+                             "are computed from the boundary elements' slip velocities; allowed value is 'bem'")
+
     def _check_finite(self):
         """The combined moduli and the contact size that the keys give are finite and positive: keys each within their
         range can still over- or underflow together (E1 = 5e-324 MPa gives E* = 0; R = 1e300 mm an infinite
