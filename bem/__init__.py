@@ -9,6 +9,7 @@
     subsurface  stresses below the grid from its tractions, depth layer by depth layer (docs/theory.md §11.6)
     rows        the tangential influence of one grid row's change on the other rows, by 1-D FFTs
     wisdom      FFTW wisdom cached on disk (and the pyfftw import the operator uses)
+    heat        surface temperature of a half-space moving under a heat flux (moving heat source, by FFT)
 
 Imports nothing else of rollcontact. Units: mm, N, MPa (influence coefficients in mm/MPa). The names below are
 imported on first use, so that `rollcontact.bem.errors` does not load numpy, pyfftw and numba.
@@ -19,7 +20,8 @@ _WHERE = {"ConvergenceError": "errors", "ContactEdgeError": "errors", "GrossSlid
           "OutputExistsError": "errors", "OutputInUseError": "errors",
           "InputError": "errors", "RollcontactError": "errors", "SceneError": "errors", "Grid": "grid",
           "contact_box": "grid", "influence_coefficients": "influence", "Material": "materials",
-          "MaterialPair": "materials", "HalfSpaceOperator": "operator", "ToeplitzOperator": "toeplitz", "SubsurfaceStresses": "subsurface"}
+          "MaterialPair": "materials", "HalfSpaceOperator": "operator", "ToeplitzOperator": "toeplitz",
+          "SubsurfaceStresses": "subsurface", "MovingHeatSource": "heat", "ThermalBody": "heat"}
 __all__ = list(_WHERE)
 
 

@@ -152,8 +152,12 @@ def map_viscoelastic(case: Case, d: Draft):
         d.set("materials", f"tau{body}", tc, "creep relaxation time; " + where(case, f"TC{body}"))
 
 
-def map_friction(case: Case, d: Draft):
-    """L = 0 (Coulomb, FSTAT = FKIN) as load.mu; the other friction laws and friction per grid row refused."""
+def map_friction(case: Case, d: Draft, kind: str = "rolling"):
+    """L = 0 (Coulomb, FSTAT = FKIN) as load.mu; L = 2, 3, 4 (the linear, rational and exponential slip-velocity laws)
+    and L = 6 (temperature dependent friction) as a [friction] law with its memory (MEMDST, MEM_S0) where the problem
+    rolls (`kind` 'rolling': steady or transient, T = 2, 3); in a frictionless compression ('normal') the law's static
+    coefficient as load.mu; refused in shifts ('shift': the reference program takes a shift's slip velocity as the
+    slip over 1 s) and on a wheel ('wheelrail'), and so is friction per grid row or varying along the track."""
     law = case.effective.get("L", case.digits["L"])
     vary = case.effective.get("V", case.digits["V"])
     if vary:
@@ -166,16 +170,57 @@ def map_friction(case: Case, d: Draft):
             d.refuse("FKIN", mu, "is outside rollcontact's range of load.mu, [1e-6, 10]", case.line_of("FKIN"))
         d.set("load", "mu", mu, "FSTAT = FKIN; " + where(case, "FKIN"))
         return
-    needs = {2: "slip-velocity dependent friction, linear law", 3: "slip-velocity dependent friction, rational law",
-             4: "slip-velocity dependent friction, exponential law", 6: "temperature dependent friction"}
-    d.refuse(digit(case, "L"), law, f"needs {needs[law]} ([friction])", case.digit_lines["L"])
+    names = {2: "FLIN", 3: "FRAT", 4: "FEXP"}
+    if kind == "normal":          # T = 0: the tangential problem is not solved; the law's mu(0) for the record
+        mu = (case.value("FREF") if law == 6 else
+              case.value("FKIN") + sum(case.value(f"{names[law]}{k}") or 0.0 for k in (1, 2)))
+        d.set("load", "mu", mu, f"the static coefficient of friction law L = {law} (frictionless compression, T = 0)")
+        return
+    if kind != "rolling":
+        why = {"shift": "in a shift (T = 1), whose slip velocity the reference program takes as the slip over 1 s; "
+                        "rollcontact's laws are for rolling",
+               "wheelrail": "on a wheel (module 1); rollcontact's [friction] is for module 3's rolling"}[kind]
+        d.refuse(digit(case, "L"), law, f"needs a friction law {why}", case.digit_lines["L"])
+        return
+    if law == 6:
+        d.set("friction", "law", "temperature", f"L = 6 (line {case.digit_lines['L']})")
+        for key, name in (("mu_ref", "FREF"), ("T_ref", "TREF"), ("dmu_heat", "DFHEAT"), ("dT_heat", "DTHEAT")):
+            d.set("friction", key, case.value(name), where(case, name))
+        return
+    name = {2: "linear", 3: "rational", 4: "exponential"}[law]
+    d.set("friction", "law", name, f"L = {law} (line {case.digit_lines['L']})")
+    d.set("friction", "mu_kin", case.value("FKIN"), where(case, "FKIN"))
+    for k in (1, 2):
+        size, half = case.value(f"{names[law]}{k}") or 0.0, case.value(f"SABSH{k}")
+        if k == 1 or size > 0:
+            d.set("friction", f"mu_{k}", size, where(case, f"{names[law]}{k}"))
+            d.set("friction", f"s_{k}", half, where(case, f"SABSH{k}") + " (mm/s)")
+    dc, s0 = case.value("MEMDST") or 0.0, case.value("MEM_S0") or 0.0
+    if dc > 0:
+        d.set("friction", "memory_distance", dc, where(case, "MEMDST") + " (mm)")
+        if s0 > 0:
+            d.set("friction", "memory_s0", s0, where(case, "MEM_S0") + " (mm/s)")
 
 
-def map_heat(case: Case, d: Draft):
-    """H = 1, 3 (surface temperatures): refused, with what they would need."""
-    if case.digits["H"]:
-        d.refuse(digit(case, "H"), case.digits["H"], "needs the surface temperatures of steady rolling "
-                                                     "([thermal])", case.digit_lines["H"])
+#: the reference program's thermal units in rollcontact's: LAMBDA W/(mm K) -> W/(m K), DENS kg/mm^3 -> kg/m^3
+_THERMAL = (("T_bulk", "BKTEMP", 1.0), ("heat_capacity", "HEATCP", 1.0), ("conductivity", "LAMBDA", 1e3),
+            ("density", "DENS", 1e9))
+
+
+def map_heat(case: Case, d: Draft, kind: str = "rolling"):
+    """H = 1, 3 (surface temperatures) as [thermal] in steady rolling (T = 3; the inputs converted to W/(m K) and
+    kg/m^3); refused in the other problems and on a wheel ('wheelrail'), with what they would need."""
+    if not case.digits["H"]:
+        return
+    if kind == "wheelrail" or case.digits.get("T") != 3:
+        d.refuse(digit(case, "H"), case.digits["H"], "needs the surface temperatures " +
+                 ("on a wheel (module 1)" if kind == "wheelrail" else "of a shift or a transient") +
+                 "; rollcontact's [thermal] is for module 3's steady rolling (T = 3)", case.digit_lines["H"])
+        return
+    for key, name, factor in _THERMAL:
+        for body in (1, 2):
+            unit = {"LAMBDA": " (W/(mm K), x 1000)", "DENS": " (kg/mm^3, x 1e9)"}.get(name, "")
+            d.set("thermal", f"{key}{body}", case.value(f"{name}{body}") * factor, where(case, f"{name}{body}") + unit)
 
 
 # --- geometry and grid ---------------------------------------------------------------------------------------------

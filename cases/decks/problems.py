@@ -77,11 +77,13 @@ def map_problem(problem: Problem) -> Problem:
     """Fill problem.draft (and steps, frame) for a module-3 problem; the refusals are in draft.unsupported."""
     d = problem.draft = Draft()
     head = problem.cases[0]
+    rolls = problem.kind in ("steady", "single transient") or any(c.digits["T"] == 2 for c in problem.cases)
+    kind = "rolling" if rolls else ("normal" if problem.kind == "normal" else "shift")
     for case in problem.cases:
         M.map_digits(case, d)
-        M.map_heat(case, d)
+        M.map_heat(case, d, kind)
     M.map_materials(head, d)
-    M.map_friction(head, d)
+    M.map_friction(head, d, kind)
     M.map_normal_load(head, d)
     geo = M.map_geometry(head, d)
     for case in problem.cases[1:]:

@@ -25,7 +25,7 @@ def map_wheelrail(problem: Problem, folder: Path | None) -> Problem:
     d = problem.draft = Draft()
     dg, ln = case.digits, case.digit_lines
     M.map_digits(case, d)
-    M.map_heat(case, d)
+    M.map_heat(case, d, "wheelrail")
     M.map_material_model(case, d)
     if dg["C1"] not in (0, 1):
         d.refuse(M.digit(case, "C1"), dg["C1"], "needs a wheel on a roller (roller rig)", ln["C1"])
@@ -39,7 +39,7 @@ def map_wheelrail(problem: Problem, folder: Path | None) -> Problem:
         d.refuse(M.digit(case, "F"), dg["F"], "needs a prescribed total force FX_WS or a massless rail model",
                  ln["F"])
     _materials(case, d)
-    M.map_friction(case, d)
+    M.map_friction(case, d, "wheelrail")
     _discretisation(case, d)
     _track(case, d, folder)
     _wheelset(case, d, folder)

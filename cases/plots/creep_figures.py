@@ -33,10 +33,13 @@ def plot_curve(tables, out_dir, stem, overwrite=False):
     ax.plot(fine[fine <= 1.2], fine[fine <= 1.2], "--", color="C1", label="Kalker's linear theory")
     ax.plot(fine, vermeulen_johnson(fine), ":", color="C2", label="Vermeulen-Johnson")
     ax.axhline(1.0, color="0.6", lw=0.8)
+    if getattr(first, "lowest_ratio", None) is not None and first.lowest_ratio < 1.0:   # a falling friction law
+        ax.axhline(first.lowest_ratio, color="C3", lw=0.8, ls="-.", label="mu_kin Fn (the law at high slip velocity)")
     unit = " (1/mm)" if first.varied == "phi" else ""
     ax.set_xlabel(f"{name} / saturation value ({first.saturation:.4g}{unit})")
     ax.set_ylabel(f"-{force} / (mu Fn)")
-    ax.set_title(f"creep-force curve over {first.varied}; mu Fn = {first.mu_fn:.4g} N", fontsize=10)
+    law = f"\n{first.law}" if getattr(first, "law", "") else ""
+    ax.set_title(f"creep-force curve over {first.varied}; mu Fn = {first.mu_fn:.4g} N{law}", fontsize=10)
     ax.legend(loc="lower right", fontsize=8)
     return save_figure(fig, out_dir, stem, overwrite=overwrite)
 
@@ -49,8 +52,10 @@ def is_creep_run(data) -> bool:
 def plot_creep_run(data, out_dir, stem, overwrite=False):
     """Maps of a steady rolling run (stem_maps.png/.pdf): the traction magnitude |tau|/(mu p_max) with the slip
     direction, and stick (at the leading edge) and slip regions; x along the rolling direction (arrow). A transient
-    run: its last stored step, around the contact."""
+    run: its last stored step, around the contact. With a friction law or [thermal], also stem_friction (the local
+    mu, slip velocity and temperatures, cases.plots.friction_figures)."""
     s = data.summary
+    keep = slice(None)
     if not len(data.field_steps):
         from rollcontact.cases.plots.common import PlotError
         raise PlotError(f"{data.path}: this [rolling] run stored no fields (output.fields = 'none'): no maps to draw")
@@ -90,4 +95,6 @@ def plot_creep_run(data, out_dir, stem, overwrite=False):
     if "pressure_centroid_x" in s:       # viscoelastic bodies: the pressure leaning forward (docs/viscoelastic.md)
         from rollcontact.cases.plots.visco_figures import plot_pressure
         paths += plot_pressure(data, out_dir, stem, overwrite=overwrite)
-    return paths
+    from rollcontact.cases.plots.friction_figures import plot_friction      # a law's mu, slip velocity, temperatures
+    window = keep if s.get("state") == "transient" else None
+    return paths + plot_friction(data, out_dir, stem, window=window, overwrite=overwrite)

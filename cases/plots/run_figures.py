@@ -360,7 +360,8 @@ def compare_maps_figure(va: RunView, sa: int, vb: RunView, sb: int):
 
 def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwrite=False) -> list:
     """All figures of one run into out_dir: <stem>_history, _maps, _centrelines (PNG + PDF), <stem>_loads for a run
-    with oscillating loads (cases.plots.load_figures), and when the file holds subsurface stresses
+    with oscillating loads (cases.plots.load_figures), <stem>_friction_step<N> for a run with a friction law
+    (cases.plots.friction_figures), and when the file holds subsurface stresses
     _subsurface_step<N> and _subsurface_maxima (cases.plots.subsurface_figures)."""
     stem = view.path.stem
     if not view.has_fields and step is not None:     # refused before any figure is drawn
@@ -381,6 +382,8 @@ def plot_run(view: RunView, out_dir, step: int | None = None, notes=None, overwr
     if view.scene.viscoelastic:      # the pressure leaning forward and its centroid (docs/viscoelastic.md)
         from rollcontact.cases.plots.visco_figures import plot_pressure
         paths += plot_pressure(view.data, out_dir, f"{stem}_step{step}", step, overwrite)
+    from rollcontact.cases.plots.friction_figures import plot_friction
+    paths += plot_friction(view.data, out_dir, stem, step, overwrite=overwrite)    # a friction law's mu, slip velocity
     from rollcontact.cases.plots.subsurface_figures import plot_subsurface
     paths += plot_subsurface(view, out_dir, step, notes, overwrite)
     return paths

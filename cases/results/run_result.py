@@ -27,6 +27,13 @@ HISTORY_NAMES = tuple(HISTORY_UNITS)
 #: /history of a [rolling] transient run (cases.run.creep_transient) adds: M_z the moment on the rolling sphere
 #: about the contact centre (Kalker's convention), xi, eta the creepages of the step, cpu_time its process CPU time.
 CREEP_HISTORY_UNITS = {"M_z": "N mm", "xi": "-", "eta": "-", "cpu_time": "s"}
+#: /history of a run with a [friction] law adds `friction_iterations` (the solves of the step's slip-velocity
+#: iteration), `frictional_power` (W, sum tau . s dA with s the slip velocity) and `friction_feedback` (the step's
+#: uniqueness indicator, solver.friction.FrictionState); with [thermal] (transient [rolling]) T1_max, T2_max, the
+#: largest surface temperatures.
+FRICTION_HISTORY_UNITS = {"friction_iterations": "-", "frictional_power": "W", "friction_feedback": "-",
+                          "T1_max": "degC", "T2_max": "degC"}
+FRICTION_HISTORY = ("friction_iterations", "frictional_power", "friction_feedback")
 
 #: /history of a scene with a speed adds time, the end of the step (s; step n ends at n step_time, step 0 at 0); of a
 #: scene with viscoelastic bodies (docs/viscoelastic.md; cases.run.viscoelastic) pressure_centroid_x, int x p dA / Fn
@@ -45,6 +52,12 @@ FIELD_NAMES = tuple(FIELD_UNITS)
 #: /fields of a stepped run with viscoelastic bodies add the element states q of each such body i (MPa; the tractions
 #: p, tau_x, tau_y filtered by the body's exponential memory, solver.visco.memory), from which a restart continues.
 VISCO_FIELD_UNITS = {f"q_{c}{i}": "MPa" for i in (1, 2) for c in "pxy"}
+#: /fields of a run with a [friction] law add mu, the local coefficient of friction that bounds the step's traction (the
+#: memory state at its end), and slip_velocity, the magnitude of the slip velocity (slip of the step over its time, or
+#: the speed times the slip per unit rolled distance in steady rolling); with [thermal] T1, T2, the surface temperatures
+#: of body 1 (the sphere) and body 2 (the substrate).
+FRICTION_FIELD_UNITS = {"mu": "-", "slip_velocity": "mm/s", "T1": "degC", "T2": "degC"}
+FRICTION_FIELDS = ("mu", "slip_velocity")
 
 #: /summary: name -> unit ('-': dimensionless, a count or text). Normalised values follow seed Eq. 9:
 #: f_t = Ft/(mu Fn), w = W/a, u = U/U0 with U0 = mu E* d/G*. U_perp: the final shift across Ft,
@@ -56,7 +69,8 @@ SUMMARY_UNITS = {
     "W": "mm", "dW_used": "mm", "nx": "-", "ny": "-", "elements": "-", "steps": "-", "steps_planned": "-",
     "iterations": "-", "wall_time": "s", "stopped_at_step": "-", "state_message": "-", "fidelity": "-",
     "springs": "-", "ds": "mm", "checkpoints": "-", "checkpoint_time": "s", "dissipation_per_period": "N mm",
-    "speed": "mm/s", "step_time": "s",
+    "speed": "mm/s", "step_time": "s", "mu_static": "-", "friction_law": "-", "frictional_power": "W",
+    "T1_max": "degC", "T2_max": "degC", "friction_feedback": "-",
     "fidelity_used": "-", "accuracy": "-", "predicted_error": "-", "fidelity_reason": "-", "traction_bound": "-",
     "flexibility": "mm/MPa", "ellipse_a": "mm", "ellipse_b": "mm", "model_cpu_time": "s",
 }
@@ -76,7 +90,11 @@ VISCO_SUMMARY_UNITS = {"pressure_centroid_x": "mm", "rolling_resistance_moment":
 SUMMARY_UNITS.update(VISCO_SUMMARY_UNITS)
 #: dissipation_per_period: the frictional work of the last complete period (sum of /history/dissipation over it).
 #: speed: the scene's rolling speed (motion.speed or rolling.speed), step_time: the duration of every step (its
-#: displacement over the speed; Scene.step_time); both only in a scene with a speed.
+#: displacement over the speed; Scene.step_time); both only in a scene with a speed. With a [friction] law: mu_static
+#: (its mu(0), the mu of f_t = Ft/(mu Fn) and U0), friction_law (the law in words), frictional_power (W, of the last
+#: step or of the steady state), friction_feedback (the largest J of the slip-velocity iteration: >= 1 where falling
+#: friction may give the quasi-static problem several solutions, docs/friction.md); with [thermal] T1_max, T2_max
+#: (degC), the largest surface temperatures of the last step or the steady state.
 
 #: /summary of a [rolling] run (cases.run.creep_run, cases.run.creep_transient), beside SUMMARY_UNITS: the creepages
 #: xi, eta (dimensionless) and the spin phi (1/mm) of the steady state or of the last step, the rolling direction
@@ -147,8 +165,9 @@ SUMMARY_UNITS.update({"patch_Fx_steady": "N", "patch_Fy_steady": "N", "patch_Mz_
                       "distance": "mm", "step": "mm"})
 
 #: Units of every stored dataset (its 'units' attribute in HDF5).
-UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **TIME_HISTORY_UNITS, **VISCO_HISTORY_UNITS, **FIELD_UNITS,
-         **VISCO_FIELD_UNITS, **PATCH_FIELD_UNITS, **SUBSURFACE_UNITS, "x": "mm", "y": "mm", "z": "mm"}
+UNITS = {**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **TIME_HISTORY_UNITS, **FRICTION_HISTORY_UNITS, **VISCO_HISTORY_UNITS,
+         **FIELD_UNITS, **FRICTION_FIELD_UNITS, **VISCO_FIELD_UNITS, **PATCH_FIELD_UNITS, **SUBSURFACE_UNITS,
+         "x": "mm", "y": "mm", "z": "mm"}
 
 
 @dataclass

@@ -7,6 +7,7 @@ p and tau act on the substrate, u is the substrate relative to the sphere, U the
 from __future__ import annotations
 
 from rollcontact.cases.results.run_result import (CREEP_HISTORY_UNITS, CREEP_SUMMARY_UNITS, FIELD_UNITS,
+                                                   FRICTION_FIELD_UNITS, FRICTION_HISTORY_UNITS,
                                                    HISTORY_UNITS, PATCH_FIELD_UNITS, PATCH_UNITS, SUBSURFACE_UNITS,
                                                    SUMMARY_UNITS, TIME_HISTORY_UNITS, VISCO_FIELD_UNITS,
                                                    VISCO_HISTORY_UNITS)
@@ -47,6 +48,11 @@ HISTORY = {
     "time": "a scene with a speed: the end of the step (step n ends at n step_time)",
     "pressure_centroid_x": "viscoelastic bodies: ∫ x p dA / Fn along the rolling direction from the body's lowest point",
     "viscous_dissipation": "viscoelastic bodies: the work of the viscous dashpots in the step",
+    "friction_iterations": "[friction] law: the solves of the step's slip-velocity iteration (docs/friction.md)",
+    "frictional_power": "[friction] law or [thermal]: the step's frictional power, sum of tau . slip velocity dA",
+    "friction_feedback": "[friction] law: the step's uniqueness indicator (1 and above: several solutions possible)",
+    "T1_max": "[thermal] transient: the largest surface temperature of body 1 (the sphere)",
+    "T2_max": "[thermal] transient: the largest surface temperature of body 2 (the substrate)",
 }
 
 FIELDS = {
@@ -59,6 +65,11 @@ FIELDS = {
     **{f"q_{c}{i}": f"viscoelastic body {i}: the memory state of {name} (the traction filtered by the body's "
                     "exponential memory; a restart continues from it)"
        for i in (1, 2) for c, name in (("p", "p"), ("x", "tau_x"), ("y", "tau_y"))},
+    "mu": "[friction] law: the local coefficient of friction bounding the step's traction (with memory its state at "
+          "the step's end)",
+    "slip_velocity": "[friction] law or [thermal]: magnitude of the slip velocity (slip over the step time; steady: "
+                     "speed x slip per unit rolled distance)",
+    "T1": "[thermal]: surface temperature of body 1 (the sphere)", "T2": "[thermal]: surface temperature of body 2",
     "gap": "[wheelrail] patch: the undeformed distance h(x, s) of wheel and rail along the normal",
 }
 
@@ -116,6 +127,10 @@ SUMMARY = {
     "pressure_centroid_x_steady": "viscoelastic transient: the steady state's pressure_centroid_x",
     "rolling_resistance_moment_steady": "viscoelastic transient: the steady state's moment",
     "viscous_power_steady": "viscoelastic transient: the steady state's power",
+    "mu_static": "[friction]: the law's static coefficient mu(0), used in f_t = Ft/(mu Fn) and u = U/U0",
+    "friction_law": "[friction]: the law's name", "frictional_power": "[friction] or [thermal]: frictional power "
+    "(steady rolling, a transient's last step)", "friction_feedback": "[friction]: the largest uniqueness indicator",
+    "T1_max": "[thermal]: the largest surface temperature of body 1", "T2_max": "[thermal]: the same of body 2",
     "n_patches": "[wheelrail]: contact patches found", "patch_y_rail": "[wheelrail] per patch: reference point, rail "
     "profile coordinate", "patch_y_wheel": "per patch: reference point, wheel profile coordinate",
     "patch_x": "per patch: x in the track frame", "patch_contact_angle": "per patch: contact angle",
@@ -157,8 +172,9 @@ def groups() -> list:
         ("/", "attributes", [(k, u, d) for k, (u, d) in ROOT_ATTRIBUTES.items()]),
         ("/grid", "datasets", [(k, "mm", d) for k, d in GRID.items()]),
         ("/history", "datasets", rows({**HISTORY_UNITS, **CREEP_HISTORY_UNITS, **TIME_HISTORY_UNITS,
-                                       **VISCO_HISTORY_UNITS}, HISTORY)),
-        ("/fields", "datasets", rows({"step": "-", **FIELD_UNITS, **VISCO_FIELD_UNITS}, FIELDS)),
+                                       **FRICTION_HISTORY_UNITS, **VISCO_HISTORY_UNITS}, HISTORY)),
+        ("/fields", "datasets", rows({"step": "-", **FIELD_UNITS, **FRICTION_FIELD_UNITS, **VISCO_FIELD_UNITS},
+                                      FIELDS)),
         ("/subsurface", "datasets", rows({"z": "mm", "step": "-", **SUBSURFACE_UNITS}, SUBSURFACE)),
         ("/subsurface", "attributes", [(k, u, d) for k, (u, d) in SUBSURFACE_ATTRIBUTES.items()]),
         ("/summary", "attributes", rows({**SUMMARY_UNITS, **CREEP_SUMMARY_UNITS}, SUMMARY)),

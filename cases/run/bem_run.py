@@ -16,6 +16,7 @@ from rollcontact.cases.run.discretise import field_steps, scene_grid, scene_oper
 from rollcontact.cases.run.recorder import StepRecorder
 from rollcontact.cases.run.summary import summarise
 from rollcontact.cases.run.viscoelastic import scene_memory
+from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.normal import NormalParams
 from rollcontact.solver.rolling import StepParams, run_path
@@ -43,12 +44,14 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
     tol, max_iter = scene.solver.tol, scene.solver.max_iter
     params = StepParams(NormalParams(tol=tol, max_iter=max_iter), TangentialParams(tol=tol, max_iter=max_iter),
                         coupling_tol=max(tol, 1e-10))
+    friction = local_friction(scene)
     memory = scene_memory(scene, op)      # viscoelastic bodies: their element states (None for elastic ones)
     if memory is not None and restart is not None:
         restart.restore(memory)
     recorder = StepRecorder(grid, path, field_steps(scene, path), restart, compress=checkpoint is not None,
                             transverse=scene.transverse_direction,
-                            states=() if memory is None else tuple(memory.states()), rolling=scene.rolling_direction)
+                            states=() if memory is None else tuple(memory.states()), rolling=scene.rolling_direction,
+                            friction=friction is not None)
     result = partial(scene, path, grid, recorder, t_start)
     ends = set(path.period_ends().tolist())
     if progress:
@@ -61,7 +64,8 @@ def run_bem(scene: Scene, *, progress=None, restart=None, checkpoint=None, stres
         if stresses is not None:
             stresses.catch_up(recorder)          # the snapshots a restart inherits
         for rec in run_path(op, scene.profile, path, Fn=scene.load.Fn, mu=scene.load.mu,
-                            params=params, state=None if restart is None else restart.state, memory=memory):
+                            params=params, state=None if restart is None else restart.state, memory=memory,
+                            friction=friction):
             row = recorder.add(rec)
             if stresses is not None:
                 stresses.catch_up(recorder)

@@ -30,10 +30,12 @@ from rollcontact.cases.run.creep_fast import SOLVERS, bound_pressure, contact_el
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.viscoelastic import steady_visco
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile, rolling_semi_axes
+from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import (SteadyParams, SteadyRolling, creep_curve, kalker_coefficients,
                                       saturation_creepage, vermeulen_johnson)
 from rollcontact.solver.fastsim import kalker_flexibilities
+from rollcontact.solver.friction import solve_steady_friction
 from rollcontact.solver.normal import NormalParams, solve_normal
 
 #: The creepage varied -> (index in (xi, eta, phi), force component, Kalker coefficient index)
@@ -53,6 +55,8 @@ class CurveTable:
     rows: list
     mu_fn: float
     fidelity: str = "bem"
+    law: str = ""                  # a friction law in words (mu_fn then uses its static coefficient)
+    lowest_ratio: float | None = None   # the law's lowest coefficient over its static one (mu_kin / mu_static)
 
 
 def compute_curve(scene: Scene, varied: str = "xi", fractions=None, fidelity: str = "bem") -> CurveTable:
@@ -105,13 +109,21 @@ def compute_curves(scene: Scene, varied: str = "xi", fractions=None, fidelities=
                                      normal.force)
     creep = np.zeros((len(fractions), 3))
     creep[:, index] = fractions * saturation
+    friction = local_friction(scene, grid)      # a friction law or [thermal]: None without them
+    if friction is not None and set(fidelities) - {"bem"}:
+        raise InputError(f"{arg('fidelity')} {[f for f in fidelities if f != 'bem']}: the fast models take one "
+                         "coefficient of friction; a scene with [friction] or [thermal] draws its curve with the "
+                         "boundary elements (fidelity 'bem')")
+    law = friction.law if friction is not None else None
     tables = []
     for fidelity in fidelities:
+        states = []
         if fidelity == "bem":
             problem = (SteadyRolling(grid, pair, coupled=False, operator=op) if visco is None
                        else visco.tangential_problem)
             curve = creep_curve(problem, normal.pressure, scene.load.mu, creep,
-                                params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)))
+                                params=SteadyParams(tol=scene.solver.tol, max_sweeps=max(scene.solver.max_iter, 100)),
+                                **({} if friction is None else {"solve": _law_solver(friction, states)}))
             force, moment, stick, sweeps, seconds = (curve.force, curve.moment, curve.stick_fraction, curve.sweeps,
                                                      curve.cpu_time)
         else:
@@ -120,8 +132,33 @@ def compute_curves(scene: Scene, varied: str = "xi", fractions=None, fidelities=
         rows = [dict(zip(COLUMNS, (creep[k, index], fractions[k], force[k, 0], force[k, 1], moment[k], ratio[k],
                                    fractions[k], float(vermeulen_johnson(fractions[k])), stick[k], int(sweeps[k]),
                                    float(seconds[k])))) for k in range(len(fractions))]
-        tables.append(CurveTable(varied, saturation, rows, mu_fn, fidelity))
+        for row, state in zip(rows, states):
+            row.update(_friction_columns(state, normal.pressure > 0))
+        tables.append(CurveTable(varied, saturation, rows, mu_fn, fidelity,
+                                 law="" if law is None else law.describe(),
+                                 lowest_ratio=None if law is None else law.mu_lowest / law.mu_static))
     return tables
+
+
+def _law_solver(friction, states):
+    """solve_steady's stand-in for a friction law: each point warm-started from the coefficient field of the one
+    before, its FrictionState appended to `states`."""
+    def solve(problem, pressure, mu, xi, eta, phi, *, initial=None, params=None):
+        res = solve_steady_friction(problem, pressure, friction, xi, eta, phi, initial=initial,
+                                    mu_initial=states[-1].mu if states else None, params=params)
+        states.append(res.friction)
+        return res
+    return solve
+
+
+def _friction_columns(state, contact) -> dict:
+    """The columns a friction law adds: the lowest local mu in the contact, the largest slip velocity (mm/s), the
+    frictional power (W) and, with temperatures, the largest surface temperature (degC)."""
+    out = {"mu_min": float(state.mu[contact].min()), "slip_velocity_max": float(state.slip_velocity.max()),
+           "frictional_power": state.power}
+    if state.temperatures is not None:
+        out["T_max"] = float(max(state.temperatures.T1.max(), state.temperatures.T2.max()))
+    return out
 
 
 def _fast_points(scene, grid, normal, creep, fidelity):
@@ -152,8 +189,9 @@ def write_csv(table: CurveTable, path: Path, overwrite: bool = False) -> Path:
     text = io.StringIO(newline="")
     text.write(f"# creep-force curve over {table.varied} ({unit}) by fidelity = '{table.fidelity}'; saturation "
                f"creepage {table.saturation:.6g} "
-               f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)\n")
-    writer = csv.DictWriter(text, fieldnames=COLUMNS)
+               f"{unit}; mu Fn = {table.mu_fn:.6g} N; F_x, F_y (N), M_z (N mm) on the rolling sphere (Kalker)"
+               + (f"; friction law {table.law} (mu = its static coefficient)" if table.law else "") + "\n")
+    writer = csv.DictWriter(text, fieldnames=list(table.rows[0]) if table.rows else COLUMNS)
     writer.writeheader()
     for row in table.rows:
         writer.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})

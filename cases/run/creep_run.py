@@ -38,6 +38,7 @@ from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.run.creep_fast import fast_steady
 from rollcontact.cases.run.creep_steady import solve_scene
 from rollcontact.cases.run.discretise import scene_operator
+from rollcontact.cases.run.friction_outputs import friction_fields, friction_summary
 from rollcontact.cases.run.creep_transient import run_transient
 from rollcontact.cases.run.fidelity import NAMES, choose_fidelity
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces
@@ -115,10 +116,16 @@ def _result(scene, grid, normal, steady, u, counts, creep, extra, wall):
                    iterations=[normal.iterations + counts["tangential"]], normal_iterations=[normal.iterations],
                    tangential_iterations=[counts["tangential"]], outer_iterations=[counts["outer"]],
                    residual=[counts["residual"]], wall_time=[wall])
+    friction = getattr(steady, "friction", None)     # a friction law or [thermal] (the exact steady solver's)
+    if scene.speed is not None:
+        history["time"] = [0.0]        # the steady state: one row, at t = 0
+    if friction is not None:
+        history.update(friction_iterations=[friction.iterations], frictional_power=[friction.power],
+                       friction_feedback=[friction.feedback])
     history = {k: np.asarray(v) for k, v in history.items()}
     fields = {"p": normal.pressure, "u_z": normal.displacement, "tau_x": tau_sub[0], "tau_y": tau_sub[1],
               "slip_x": -steady.slip[0] * grid.dx, "slip_y": -steady.slip[1] * grid.dx, "u_x": u[0], "u_y": u[1],
-              "region": region}
+              "region": region, **friction_fields(friction)}
     fields, stored = _stored(scene, fields, 0)
     ro = scene.rolling
     a, b = scene.semi_axes
@@ -132,6 +139,8 @@ def _result(scene, grid, normal, steady, u, counts, creep, extra, wall):
                    steps_planned=1, iterations=int(history["iterations"][0]), wall_time=wall)
     if scene.speed is not None:
         summary["speed"] = scene.speed
+    if friction is not None:
+        summary.update(friction_summary(scene, history, friction))
     summary.update(extra)
     return RunResult(scene_toml=scene.to_toml(), status="complete", x=grid.x, y=grid.y, history=history,
                      fields=fields, field_steps=stored, summary=summary, version=version())

@@ -14,8 +14,10 @@ from rollcontact.bem.errors import ConvergenceError
 from rollcontact.cases.run.discretise import scene_operator
 from rollcontact.cases.run.rolling_frame import creep_grid, rolling_frame_profile
 from rollcontact.cases.run.viscoelastic import steady_visco
+from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import SteadyParams, SteadyRolling, solve_for_forces, solve_steady
+from rollcontact.solver.friction import solve_steady_friction
 from rollcontact.solver.normal import NormalParams, solve_normal
 
 #: Outer iterations (normal, then steady tangential) allowed for coupled materials.
@@ -51,7 +53,8 @@ def solve_scene(scene, grid, op, pair, visco=None):
             return visco.solve_normal(profile, force, initial=initial, extra_displacement=extra_displacement,
                                       params=params)
     normal = solve(op, profile, force=scene.load.Fn, params=nparams)
-    steady, creep = _tangential(scene, problem, normal.pressure, None, sparams)
+    friction = local_friction(scene, grid)         # None without [friction] and [thermal]
+    steady, creep = _tangential(scene, problem, normal.pressure, None, sparams, friction)
     outer = 1
     while op.coupled:
         extra = op.normal_from_tangential(-steady.traction[0], -steady.traction[1])  # substrate convention
@@ -59,7 +62,8 @@ def solve_scene(scene, grid, op, pair, visco=None):
                       params=nparams)
         change = float(np.max(np.abs(again.pressure - normal.pressure)) / np.max(again.pressure))
         normal, before = again, steady.traction
-        steady, creep = _tangential(scene, problem, normal.pressure, steady.traction, sparams)
+        steady, creep = _tangential(scene, problem, normal.pressure, steady.traction, sparams, friction,
+                                    None if steady.friction is None else steady.friction.mu)
         outer += 1
         moved = float(np.max(np.abs(steady.traction - before)) / (scene.load.mu * np.max(normal.pressure)))
         change = max(change, moved)          # neither the pressure nor the traction moves any more
@@ -71,13 +75,21 @@ def solve_scene(scene, grid, op, pair, visco=None):
     return normal, steady, outer, creep
 
 
-def _tangential(scene, problem, pressure, initial, params):
+def _tangential(scene, problem, pressure, initial, params, friction=None, mu_initial=None):
     """The steady state at the scene's creepages, or at the creepages that give its prescribed forces (Fx, Fy on the
-    sphere, solver.creep.solve_for_forces): (SteadyResult, (xi, eta, phi))."""
+    sphere, solver.creep.solve_for_forces): (SteadyResult, (xi, eta, phi)). With `friction` (a
+    solver.friction.LocalFriction: a friction law or temperatures) the state is consistent with its law, its
+    `friction` the FrictionState."""
     xi, eta, phi = scene.creepages
     forces = scene.prescribed_forces
+    if friction is not None and forces is None:
+        return solve_steady_friction(problem, pressure, friction, xi, eta, phi, initial=initial,
+                                     mu_initial=mu_initial, params=params), (xi, eta, phi)
     if forces is None:
         return solve_steady(problem, pressure, scene.load.mu, xi, eta, phi, initial=initial, params=params), \
             (xi, eta, phi)
     found = solve_for_forces(problem, pressure, scene.load.mu, *forces, phi, params=params)
+    if friction is not None:      # Coulomb's law with temperatures: the state found, with its FrictionState
+        return solve_steady_friction(problem, pressure, friction, found.xi, found.eta, phi,
+                                     initial=found.steady.traction, params=params), (found.xi, found.eta, phi)
     return found.steady, (found.xi, found.eta, phi)

@@ -35,6 +35,8 @@ from rollcontact.cases.results.run_result import RunResult
 from rollcontact.cases.run.creep_fast import fast_operator, fast_steady, roll_fast
 from rollcontact.cases.run.creep_steady import steady_state
 from rollcontact.cases.run.discretise import scene_operator
+from rollcontact.cases.run.friction_outputs import friction_fields, friction_summary, temperature_summary
+from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces, rolling_frame_gap
 from rollcontact.cases.run.viscoelastic import MILLI, pressure_centroid, scene_memory, steady_outputs, steady_visco
 from rollcontact.cases.scene.scene import Scene
@@ -86,14 +88,14 @@ def run_transient(scene: Scene, t_start: float, *, progress=None, choice=None) -
                             tangential=TangentialParams(tol=tol, max_iter=scene.solver.max_iter),
                             coupling_tol=max(tol, 1e-10))
         roll = roll_world if frame == "world" else roll_moving
-        held = dict(memory=memory) if frame == "world" else {}      # viscoelastic scenes roll on the world grid
+        held = dict(memory=memory, friction=local_friction(scene, grid)) if frame == "world" else {}
         records = roll(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
                        distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
                        phi=phi, forces=forces, initial=ro.initial or "rest", params=params, **held)
     keep = _stored_steps(scene.output.fields, n, math.ceil(2.0 * scene.rolling_half_length / step - 1e-9))
     rows, fields, stored = [], {k: [] for k in FIELDS}, []
     for rec in records:
-        rows.append(_row(rec, grid))
+        rows.append(_row(rec, grid))            # with a friction law its columns
         if memory is not None:          # docs/viscoelastic.md; time: with cattaneo, its load at rest takes a step
             rows[-1].update(time=(rec.step + (ro.initial == "cattaneo")) * scene.step_time,
                             pressure_centroid_x=pressure_centroid(grid, rec.normal.pressure, (rec.centre, 0.0)),
@@ -103,7 +105,7 @@ def run_transient(scene: Scene, t_start: float, *, progress=None, choice=None) -
         if rec.step in keep:
             stored.append(rec.step)
             for k, v in _fields(rec).items():
-                fields[k].append(v)
+                fields.setdefault(k, []).append(v)
         last = rec
     wall, cpu = time.perf_counter() - t_start, time.process_time() - c_start
     history = {k: np.asarray([r[k] for r in rows]) for k in rows[0]}
@@ -126,6 +128,10 @@ def run_transient(scene: Scene, t_start: float, *, progress=None, choice=None) -
                        ellipse_a=steady_fast.ellipse[0], ellipse_b=steady_fast.ellipse[1])
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=scene.step_time)
+    friction = getattr(last, "friction", None)
+    if friction is not None:
+        summary.update(friction_summary(scene, history, friction))
+        summary.update({f"{k}_steady": v for k, v in temperature_summary(steady.friction).items()})
     if visco is not None:
         xc = float(history["pressure_centroid_x"][-1])
         steady_out = steady_outputs(visco, visco.grid, steady_normal.pressure, -steady.traction, steady_normal.force)
@@ -150,9 +156,15 @@ def _stored_steps(choice: str, n: int, per_length: int) -> set:
 
 
 def _row(rec, grid) -> dict:
-    """The history row of one step (run-file meaning: the force on the substrate; M_z, xi, eta in Kalker's)."""
+    """The history row of one step (run-file meaning: the force on the substrate; M_z, xi, eta in Kalker's); with a
+    friction law its iterations and frictional power, with temperatures their largest values."""
     nr, tr = rec.normal, rec.tangential
     dA = grid.cell_area
+    extra = {}
+    if getattr(rec, "friction", None) is not None:
+        extra.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power,
+                     friction_feedback=rec.friction.feedback)
+        extra.update({f"{k}": v for k, v in temperature_summary(rec.friction).items()})
     return dict(step=rec.step, period=0, W_x=rec.centre, W_y=0.0, approach=nr.approach, Fn=nr.force,
                 contact_area=float(nr.contact.sum()) * dA, stick_area=rec.stick_cells * dA,
                 U_x=float(rec.rigid_shift[0]), U_y=float(rec.rigid_shift[1]), F_x=float(tr.force[0]),
@@ -160,7 +172,7 @@ def _row(rec, grid) -> dict:
                 iterations=nr.iterations + tr.iterations, normal_iterations=nr.iterations,
                 tangential_iterations=tr.iterations, outer_iterations=rec.outer_iterations,
                 residual=max(nr.residual, tr.residual), wall_time=rec.wall_time, cpu_time=rec.cpu_time,
-                dissipation=frictional_work(tr.traction, tr.slip, dA))
+                dissipation=frictional_work(tr.traction, tr.slip, dA), **extra)
 
 
 def _fields(rec) -> dict:
@@ -169,4 +181,5 @@ def _fields(rec) -> dict:
     nr, tr = rec.normal, rec.tangential
     u = tr.displacement
     return {"p": nr.pressure, "u_z": nr.displacement, "tau_x": tr.traction[0], "tau_y": tr.traction[1],
-            "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": u[0], "u_y": u[1], "region": tr.region}
+            "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": u[0], "u_y": u[1], "region": tr.region,
+            **friction_fields(getattr(rec, "friction", None))}

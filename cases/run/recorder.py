@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from rollcontact.cases.results.hdf5 import compress_snapshot
-from rollcontact.cases.results.run_result import FIELD_NAMES, HISTORY_NAMES, VISCO_HISTORY_UNITS
+from rollcontact.cases.results.run_result import (FIELD_NAMES, FRICTION_FIELDS, FRICTION_HISTORY, HISTORY_NAMES,
+                                                   VISCO_HISTORY_UNITS)
 from rollcontact.cases.results.snapshots import SnapshotStack
 from rollcontact.cases.run.viscoelastic import pressure_centroid
 
@@ -16,20 +17,21 @@ class StepRecorder:
     kept only as the gzip chunks of the run file (`chunks`, compressed once however often the file is written; read
     back by `field` and the SnapshotStack fields of `arrays`), else as arrays (`fields`).
     `transverse`: the unit vector across Ft (Scene.transverse_direction), along which U_perp is measured.
-    A scene with a speed adds the history column `time` (step n ends at n path.step_time); one with viscoelastic
-    bodies (`states`: the names of their element states, ViscoMemory.states()) the columns pressure_centroid_x (along
-    `rolling`, the unit vector of the rolling direction, from the sphere's centre) and viscous_dissipation, and the
-    states to the snapshots."""
+    A scene with a speed adds the history column `time` (step n ends at n path.step_time); one with a friction law
+    (`friction`) the fields mu and slip_velocity and the history columns friction_iterations, frictional_power and
+    friction_feedback; one with viscoelastic bodies (`states`: the names of their element states,
+    ViscoMemory.states()) the columns pressure_centroid_x (along `rolling`, the unit vector of the rolling direction,
+    from the sphere's centre) and viscous_dissipation, and the states to the snapshots."""
 
     def __init__(self, grid, path, snapshot_steps, restart=None, compress=False, transverse=(0.0, 1.0),
-                 states=(), rolling=(1.0, 0.0)):
+                 states=(), rolling=(1.0, 0.0), friction=False):
         self.grid = grid
         self.step_time = path.step_time
         self.rolling = (float(rolling[0]), float(rolling[1]))
         self.viscous = bool(states)
         self.history_names = HISTORY_NAMES + (("time",) if self.step_time is not None else ()) + \
-            (tuple(VISCO_HISTORY_UNITS) if self.viscous else ())
-        self.field_names = FIELD_NAMES + tuple(states)
+            (FRICTION_HISTORY if friction else ()) + (tuple(VISCO_HISTORY_UNITS) if self.viscous else ())
+        self.field_names = FIELD_NAMES + (FRICTION_FIELDS if friction else ()) + tuple(states)
         self.cell_area = grid.cell_area
         self.transverse = (float(transverse[0]), float(transverse[1]))
         self.shape = grid.shape
@@ -74,6 +76,9 @@ class StepRecorder:
                    wall_time=rec.wall_time, dissipation=rec.dissipation)
         if self.step_time is not None:
             row["time"] = rec.step * self.step_time
+        if rec.friction is not None:
+            row.update(friction_iterations=rec.friction.iterations, frictional_power=rec.friction.power,
+                       friction_feedback=rec.friction.feedback)
         if self.viscous:
             row.update(pressure_centroid_x=pressure_centroid(self.grid, nr.pressure, rec.centre, self.rolling),
                        viscous_dissipation=rec.viscous_dissipation)
@@ -159,6 +164,8 @@ def field_values(rec) -> dict:
     out = {"p": nr.pressure, "u_z": nr.displacement, "tau_x": tr.traction[0], "tau_y": tr.traction[1],
            "slip_x": tr.slip[0], "slip_y": tr.slip[1], "u_x": tr.displacement[0], "u_y": tr.displacement[1],
            "region": tr.region}
+    if rec.friction is not None:
+        out.update(mu=rec.friction.mu, slip_velocity=rec.friction.slip_velocity)
     if getattr(rec, "memory_states", None):
         out.update(rec.memory_states)
     return out

@@ -1,7 +1,8 @@
 """Continuing a stored run (`rollcontact run --restart RUN.h5 [--step N]`).
 
-The state a run continues from is the stored field snapshot of one step (pressure, traction) with the
-history up to it (rigid shift U, approach). Units mm, N, MPa.
+The state a run continues from is the stored field snapshot of one step (pressure, traction; with a friction law
+its local coefficient /fields/mu, the memory state) with the history up to it (rigid shift U, approach). Units mm,
+N, MPa.
 """
 from __future__ import annotations
 
@@ -92,7 +93,8 @@ def load_restart(path, step: int | None = None) -> RestartSource:
     k = int(np.flatnonzero(np.asarray(h["step"]) == step)[0])
     state = StepState(step, data.fields["p"][i].copy(),
                       np.stack([data.fields["tau_x"][i], data.fields["tau_y"][i]]).copy(),
-                      np.array([h["U_x"][k], h["U_y"][k]], dtype=float), float(h["approach"][k]))
+                      np.array([h["U_x"][k], h["U_y"][k]], dtype=float), float(h["approach"][k]),
+                      data.fields["mu"][i].copy() if "mu" in data.fields else None)
     return RestartSource(Path(path), scene, data, state)
 
 

@@ -10,6 +10,7 @@ import numpy as np
 
 from rollcontact.bem.grid import Grid
 from rollcontact.cases.results.run_result import RunResult
+from rollcontact.cases.run.friction_outputs import friction_lines, friction_summary
 from rollcontact.cases.run.viscoelastic import viscous_per_period
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.rolling.shakedown import SETTLED_STATES, classify, cyclic_slip
@@ -53,6 +54,8 @@ def summarise(scene: Scene, path: LoadPath, history: dict, state_label, grid: Gr
                        viscous_dissipation_per_period=viscous_per_period(path.period, history))
     if scene.speed is not None:
         summary.update(speed=scene.speed, step_time=path.step_time)
+    if scene.friction_on:
+        summary.update(friction_summary(scene, history))
     if state_label:
         summary["state"] = state_label
     elif path.period.max() == 0:
@@ -139,6 +142,7 @@ def format_summary(result: RunResult) -> str:
         lines.append(f"sideways (across Ft): U_perp = {s['U_perp']:.6f} mm{walk}")
     if s.get("dissipation_per_period") is not None and d.scene.oscillating:
         lines.append(f"frictional work of the last period: {s['dissipation_per_period']:.6g} N mm")
+    lines += friction_lines(s)
     lines += _visco_lines(s)
     if d.status != "complete":
         lines.append(f"status: {d.status}: {d.error}")
@@ -178,6 +182,7 @@ def _format_creep(d: RunResult) -> str:
                          f"N, F_y = {s['F_y_steady']:.6g} N, M_z = {s['M_z_steady']:.6g} N mm"
                          + (f", xi = {s['xi_steady']:.6g}, eta = {s['eta_steady']:.6g}" if s['forces_prescribed']
                             else ""))
+        lines += friction_lines(s)
     else:
         lines.append(f"status: {d.status}: {d.error}")
     lines += _visco_lines(s)

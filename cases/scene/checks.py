@@ -108,7 +108,8 @@ class SceneChecks:
 
     def _check_transient_grid(self):
         """[rolling] grid = 'contact' needs a step of whole elements (the grid moves by whole cells) and elastic
-        bodies (a viscoelastic body's element states stay with its material, on the world-fixed grid)."""
+        bodies with Coulomb's friction and no [thermal] (a viscoelastic body's element states, a friction law's memory
+        and the temperatures stay with the material, on the world-fixed grid)."""
         ro = self.rolling
         if ro.mode != "transient" or ro.grid != "contact":
             return
@@ -121,6 +122,11 @@ class SceneChecks:
             raise SceneError(f"[rolling] grid = 'contact' with {', '.join(keys)} = 'sls': a viscoelastic body's "
                              "element states stay with its material, which the grid moving with the contact leaves "
                              "behind; set grid = 'world' (the default for viscoelastic bodies)")
+        if self.friction_on or self.thermal_on:
+            section = "[friction] law" if self.friction_on else "[thermal]"
+            raise SceneError(f"[rolling] grid = 'contact' with a {section}: the friction memory and temperatures stay "
+                             "with the material, which the grid moving with the contact leaves behind; set grid = "
+                             "'world' (the default with [friction] or [thermal])")
 
     def _check_consistency(self):
         ld, mo = self.load, self.motion
@@ -170,6 +176,28 @@ class SceneChecks:
             raise SceneError(f"[solver] fidelity = {self.solver.fidelity!r} with {', '.join(keys)} = 'sls': the MDR "
                              "model and the fast models (and the maps of 'auto') have no viscoelastic bodies; allowed "
                              "value is 'bem'")
+
+    def _check_friction_models(self, data: dict):
+        """[friction] laws and [thermal] (docs/friction.md) with the other models: a wheel-rail scene takes neither
+        (its patches use load.mu); viscoelastic bodies take neither (the slip-velocity iteration and the contact
+        temperatures are of elastic half-spaces: [load] mu there); [thermal] needs the boundary elements (the fast models have no
+        slip-velocity field to heat with). A law other than 'coulomb' with another fidelity is refused by
+        cases.scene.friction.check_friction; 'coulomb' gives load.mu to any model."""
+        given = [f"[{sec}]" for sec in ("friction", "thermal") if data.get(sec)]
+        if not given:
+            return
+        if "wheelrail" in data or self.wheelrail_on:
+            raise SceneError(f"{' and '.join(given)} with [wheelrail]: friction laws and surface temperatures are not "
+                             "supported in wheel-rail scenes (each patch takes load.mu); remove "
+                             f"{' and '.join(given)}")
+        if self.viscoelastic:
+            keys = [f"materials.visco{i}" for i in (1, 2) if getattr(self.materials, f"visco{i}") == "sls"]
+            raise SceneError(f"{' and '.join(given)} with {', '.join(keys)} = 'sls': friction laws and surface "
+                             "temperatures are for elastic bodies; remove the viscoelastic keys, or give the "
+                             f"coefficient as [load] mu and remove {' and '.join(given)}")
+        if data.get("thermal") and self.solver.fidelity != "bem":
+            raise SceneError(f"[thermal] with [solver] fidelity = {self.solver.fidelity!r}: the surface temperatures "
+                             "are computed from the boundary elements' slip velocities; allowed value is 'bem'")
 
     def _check_finite(self):
         """The combined moduli and the contact size that the keys give are finite and positive: keys each within their

@@ -1,7 +1,8 @@
 """The keys of a scene: its sections as dataclasses whose fields carry the default, the allowed range and the
 unit of each key, and the validation of one key against its field spec (used by `cases.scene.Scene.from_dict`).
 
-Units: mm, N, MPa, degrees (each field's `unit`; none for dimensionless keys). A value of the wrong type, out of
+Units: mm, N, MPa, degrees, mm/s, degC and the SI units of the [thermal] keys (each field's `unit`; none for
+dimensionless keys). A value of the wrong type, out of
 its range or not among its choices raises `SceneError` naming the key, the value and the allowed range or values.
 Each field also says which kinds of run it applies to (`modes`, default: its section's, SECTION_MODES; the kinds:
 MODES). docs/scene_reference.md is generated from these fields (docs/scripts/reference.py).
@@ -39,6 +40,8 @@ SECTION_MODES = {
     "load": ("oscillating", "mdr"),
     "motion": ("oscillating", "mdr"),
     "rolling": ("steady", "transient"),
+    "friction": ("oscillating", "steady", "transient"),
+    "thermal": ("steady", "transient"),
     "wheelrail": ("wheelrail",),
     "grid": ("oscillating", "steady", "transient"),
     "solver": ("oscillating", "steady", "transient"),
@@ -51,6 +54,11 @@ SECTION_DOCS = {
     "load": "the normal force, the friction coefficient and the tangential load path",
     "motion": "the oscillating rolling: amplitude, direction relative to Ft, periods, step",
     "rolling": "rolling on with creepage and spin, steady or transient (excludes [motion] and a tangential load)",
+    "friction": "a friction law in place of [load] mu: falling with the slip velocity, with memory, or with the "
+                "surface temperature (docs/friction.md); the boundary elements only (law 'coulomb' also with the "
+                "fast models; neither with viscoelastic bodies nor [wheelrail])",
+    "thermal": "surface temperatures of both bodies heated by the frictional power, in [rolling] scenes with "
+               "rolling.speed (docs/friction.md)",
     "wheelrail": "a wheel on a rail: the profiles, the track, the wheelset's position, load and motion",
     "grid": "the boundary-element grid: element size and margin around the swept contact",
     "solver": "tolerances, budgets, model fidelity, threads and the normal-tangential coupling",
@@ -194,6 +202,59 @@ class Rolling:
 
 
 @dataclass
+class Friction:
+    """A friction law in place of [load] mu (solver.friction; docs/friction.md): the section given at all means a law,
+    and load.mu is refused beside it. The keys that do not belong to the chosen law are refused
+    (cases.scene.friction)."""
+    law: str | None = _spec(None, choices=("coulomb", "linear", "rational", "exponential", "temperature"),
+                            doc="friction law: 'coulomb' (mu), 'linear' | 'rational' | 'exponential' (mu_kin, mu_1, "
+                                "s_1, mu_2, s_2: mu falls with the slip velocity), 'temperature' (mu_ref, T_ref, "
+                                "dmu_heat, dT_heat; needs [thermal])")
+    mu: float | None = _spec(None, 1e-6, 10, doc="coulomb: the friction coefficient")
+    mu_kin: float | None = _spec(None, 0, 10, lo_open=True,
+                                 doc="slip-velocity laws: the coefficient at high slip velocity")
+    mu_1: float | None = _spec(None, 0, 10, doc="slip-velocity laws: size of the first term at s = 0")
+    s_1: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm/s",
+                              doc="slip-velocity laws: slip velocity halving the first term (linear: where it ends)")
+    mu_2: float | None = _spec(None, 0, 10, doc="slip-velocity laws: size of the second term at s = 0 (default 0)")
+    s_2: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm/s",
+                              doc="slip-velocity laws: slip velocity halving the second term (with mu_2 > 0)")
+    memory_distance: float | None = _spec(None, 0, INF, hi_open=True, unit="mm",
+                                          doc="slip-velocity laws: sliding distance d_c over which the local "
+                                              "coefficient relaxes to the law's (default 0: instantaneous)")
+    memory_s0: float | None = _spec(None, 0, INF, hi_open=True, unit="mm/s",
+                                    doc="with memory_distance > 0: the least rate max(s, s0) of the relaxation, so that "
+                                        "it goes on where nothing slips (default 0)")
+    mu_ref: float | None = _spec(None, 0, 10, lo_open=True, doc="temperature law: the coefficient below T_ref")
+    T_ref: float | None = _spec(None, -273.15, INF, lo_open=True, hi_open=True, unit="degC",
+                                doc="temperature law: the temperature where mu starts to change")
+    dmu_heat: float | None = _spec(None, -10, 10, doc="temperature law: change of mu from T_ref to T_ref + dT_heat "
+                                                      "(mu_ref + dmu_heat > 0)")
+    dT_heat: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="degC",
+                                  doc="temperature law: the temperature range of the change")
+
+
+@dataclass
+class Thermal:
+    """Surface temperatures of the two bodies (bem.heat, solver.friction.thermal; docs/friction.md): body 1 the
+    sphere (the rolling body), body 2 the substrate. For [rolling] scenes with rolling.speed."""
+    conductivity1: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="W/(m K)",
+                                        doc="thermal conductivity of body 1")
+    density1: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="kg/m^3", doc="density of body 1")
+    heat_capacity1: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="J/(kg K)",
+                                         doc="specific heat capacity of body 1")
+    T_bulk1: float = _spec(20.0, -273.15, INF, lo_open=True, hi_open=True, unit="degC",
+                           doc="bulk temperature of body 1")
+    conductivity2: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="W/(m K)",
+                                        doc="thermal conductivity of body 2")
+    density2: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="kg/m^3", doc="density of body 2")
+    heat_capacity2: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="J/(kg K)",
+                                         doc="specific heat capacity of body 2")
+    T_bulk2: float = _spec(20.0, -273.15, INF, lo_open=True, hi_open=True, unit="degC",
+                           doc="bulk temperature of body 2")
+
+
+@dataclass
 class WheelRail:
     """A wheel on its rail (solver.wheelrail; docs/wheelrail.md): two lateral profiles, the track and the wheelset,
     the wheelset's position, load and motion. Profiles: y positive towards the field side, z upwards (mm). Track
@@ -280,9 +341,11 @@ class Output:
 
 
 SECTIONS = {"materials": Materials, "geometry": Geometry, "load": Load, "motion": Motion, "rolling": Rolling,
-            "wheelrail": WheelRail, "grid": GridSpec, "solver": SolverSpec, "output": Output}
+            "friction": Friction, "thermal": Thermal, "wheelrail": WheelRail, "grid": GridSpec, "solver": SolverSpec,
+            "output": Output}
 SECTION_ATTR = {"materials": "materials", "geometry": "geometry", "load": "load", "motion": "motion",
-                "rolling": "rolling", "wheelrail": "wheelrail", "grid": "grid", "solver": "solver", "output": "output"}
+                "rolling": "rolling", "friction": "friction", "thermal": "thermal", "wheelrail": "wheelrail",
+                "grid": "grid", "solver": "solver", "output": "output"}
 
 
 def check_key(sec, f, value):

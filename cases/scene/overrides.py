@@ -93,6 +93,8 @@ def with_overrides(scene, assignments, replaces=()):
             section.pop(o_name, None)
         section[name] = value
         given[f"{sec}.{name}"] = item
+    if not scene.friction_on and any(key.startswith("friction.") for key in given) and "load.mu" not in given:
+        data.get("load", {}).pop("mu", None)   # a law set from the command line takes the place of load.mu
     if "geometry.shape" in given:  # a new shape: the old shape's keys that it does not take are dropped
         keep = SHAPE_KEYS.get(data["geometry"]["shape"], ())
         for name in list(data["geometry"]):

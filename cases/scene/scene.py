@@ -14,6 +14,8 @@ Units: mm, N, MPa, degrees, s (mm/s for speeds). Sections and keys (public contr
     [rolling]   mode ("steady", "transient"), xi, eta (or Fx, Fy in N), phi (1/mm), direction; distance, step
                 (mm) and initial ("rest", "cattaneo") of a transient; speed (mm/s): rolling on with creepage and
                 spin, in place of [motion] and a tangential load (Kalker's convention, solver.creep)
+    [friction]  law and its keys: a friction law in place of load.mu (cases.scene.friction, docs/friction.md)
+    [thermal]   conductivity1/2, density1/2, heat_capacity1/2, T_bulk1/2: surface temperatures ([rolling] scenes)
     [wheelrail] a wheel on its rail from two profile files, in place of [geometry], [motion], [rolling] and the loads of
                 [load] (cases.scene.wheelrail, docs/wheelrail.md)
     [grid]      dx, dy, margin
@@ -46,9 +48,10 @@ from rollcontact.bem.materials import Material, MaterialPair
 from rollcontact.cases.arguments import arg
 from rollcontact.cases.scene.geometry import (
     check_file_coverage, checked_file_geometry, cylinder_semi_axes, normal_reference, resolve_shape, shape_profile, tangential_reference)
+from rollcontact.cases.scene.friction import check_friction, friction_on, thermal_on
 from rollcontact.cases.scene.keys import (
-    SECTIONS, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, WheelRail,
-    check_key)
+    SECTIONS, Friction, GridSpec, Geometry, Load, Materials, Motion, Output, Rolling, SolverSpec, SECTION_ATTR, Thermal,
+    WheelRail, check_key)
 # re-exported: the names other modules import from cases.scene
 from rollcontact.cases.scene.keys import INF, key_unit  # noqa: F401
 from rollcontact.cases.scene.limits import MAX_STEPS, MIN_ELEMENTS_PER_RADIUS, RESOLUTION_PER_RADIUS, SceneLimits  # noqa: F401
@@ -75,6 +78,8 @@ class Scene(SceneChecks, SceneLimits):
     load: Load = field(default_factory=Load)
     motion: Motion = field(default_factory=Motion)
     rolling: Rolling = field(default_factory=Rolling)
+    friction: Friction = field(default_factory=Friction)
+    thermal: Thermal = field(default_factory=Thermal)
     wheelrail: WheelRail = field(default_factory=WheelRail)
     grid: GridSpec = field(default_factory=GridSpec)
     solver: SolverSpec = field(default_factory=SolverSpec)
@@ -109,9 +114,11 @@ class Scene(SceneChecks, SceneLimits):
         if scene.viscoelastic and ("wheelrail" in data or scene.wheelrail_on):
             raise SceneError("[materials] visco1 / visco2 = 'sls' with [wheelrail]: viscoelastic bodies are not "
                              "supported in wheel-rail scenes; remove the viscoelastic keys or the [wheelrail] section")
+        scene._check_friction_models(data)
         if "wheelrail" in data or scene.wheelrail_on:
             return scene._wheelrail_checked(data, run_limits)
         scene._check_rolling(data)
+        check_friction(scene, data)      # a friction law puts its static coefficient in load.mu
         scene._check_fidelity()
         scene._check_consistency()
         scene._check_visco()
@@ -167,18 +174,23 @@ class Scene(SceneChecks, SceneLimits):
 
     def to_dict(self, include_none: bool = False) -> dict:
         """The scene as {section: {key: value}}; [rolling] only in a rolling scene, which has no [motion]; a
-        [wheelrail] scene has no [motion] or [geometry] and only load.mu and grid.dx, dy."""
+        [wheelrail] scene has no [motion] or [geometry] and only load.mu and grid.dx, dy; [friction] and [thermal]
+        only when given (and then no load.mu: the law gives it)."""
         out = {}
         skip = ("geometry", "motion") + (() if self.rolling_on else ("rolling",)) if self.wheelrail_on else \
             ("wheelrail", "motion" if self.rolling_on else "rolling")
         for sec in SECTIONS:
             if sec in skip:
                 continue
+            if (sec == "friction" and not self.friction_on) or (sec == "thermal" and not self.thermal_on):
+                continue
             obj = getattr(self, SECTION_ATTR[sec])
             vals = {f.name: getattr(obj, f.name) for f in fields(obj)}
             if self.wheelrail_on and sec in ("load", "grid", "rolling"):
                 vals = {k: v for k, v in vals.items() if k in ("mu", "dx", "dy", "mode", "distance", "step", "initial")}
             out[sec] = {k: v for k, v in vals.items() if include_none or v is not None}
+        if self.friction_on:
+            out["load"].pop("mu", None)
         return out
 
     def to_toml(self) -> str:
@@ -208,6 +220,16 @@ class Scene(SceneChecks, SceneLimits):
         return self
 
     @property
+    def friction_on(self) -> bool:
+        """True for a scene with a [friction] law (cases.scene.friction)."""
+        return friction_on(self)
+
+    @property
+    def thermal_on(self) -> bool:
+        """True for a scene with a [thermal] section (surface temperatures)."""
+        return thermal_on(self)
+
+    @property
     def rolling_on(self) -> bool:
         """True for a scene that rolls on with creepages ([rolling] mode other than 'none')."""
         return self.rolling.mode != "none"
@@ -233,14 +255,16 @@ class Scene(SceneChecks, SceneLimits):
     @property
     def transient_grid(self) -> str | None:
         """The grid of a [rolling] transient: [rolling] grid, by default 'contact' (moving with the contact) when the
-        step (default dx) is a whole number of elements dx and the bodies are elastic, else 'world' (a viscoelastic
-        body's element states stay with its material on the world grid); None outside a transient."""
+        step (default dx) is a whole number of elements dx, the bodies are elastic, friction is Coulomb's and there
+        is no [thermal], else 'world' (a viscoelastic body's element states, a friction law's memory and the
+        temperatures stay with the material, on the world grid); None outside a transient."""
         ro = self.rolling
         if ro.mode != "transient":
             return None
         if ro.grid is not None:
             return ro.grid
-        return "contact" if self._whole_steps() and not self.viscoelastic else "world"
+        material_state = self.viscoelastic or self.friction_on or self.thermal_on
+        return "contact" if self._whole_steps() and not material_state else "world"
 
     def _whole_steps(self) -> bool:
         """True when the transient's step is k >= 1 whole elements dx along the rolling direction (within 1e-9, as

@@ -28,11 +28,12 @@ class CreepCurve:
 
 
 def creep_curve(problem: SteadyRolling, pressure, mu, creepages, *,
-                params: SteadyParams = SteadyParams()) -> CreepCurve:
+                params: SteadyParams = SteadyParams(), solve=solve_steady) -> CreepCurve:
     """Steady states at the creepages (a sequence of (xi, eta, phi)) under `pressure` (MPa) with friction `mu`,
     in the given order, each started from the traction of the one before, scaled by the ratio of the creepages
     when the two are parallel (exact in full adhesion, where the traction is linear in the creepage; the solver
-    clips it to the Coulomb bound)."""
+    clips it to the Coulomb bound). solve: the steady solver, with solve_steady's arguments (a friction law's:
+    solver.friction.solve_steady_friction with its LocalFriction in place of mu)."""
     creepages = np.atleast_2d(np.asarray(creepages, dtype=float))
     n = len(creepages)
     force, moment = np.zeros((n, 2)), np.zeros(n)
@@ -42,7 +43,7 @@ def creep_curve(problem: SteadyRolling, pressure, mu, creepages, *,
         c0 = time.process_time()
         if previous is not None:
             previous = previous * _parallel_ratio(creepages[k - 1], creepages[k])
-        res = solve_steady(problem, pressure, mu, xi, eta, phi, initial=previous, params=params)
+        res = solve(problem, pressure, mu, xi, eta, phi, initial=previous, params=params)
         seconds[k] = time.process_time() - c0
         force[k], moment[k] = res.force, res.moment
         stick[k] = res.stick.sum() / res.contact.sum()

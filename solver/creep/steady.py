@@ -80,6 +80,7 @@ class SteadyResult:
     change: float
     stick_slip: float
     creepages: tuple = field(default=(0.0, 0.0, 0.0))
+    friction: object = None     # with a friction law: its solver.friction.FrictionState (solve_steady_friction)
 
 
 class SteadyRolling:
@@ -135,17 +136,22 @@ class SteadyRolling:
 
 
 def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0, *, initial=None,
-                 params: SteadyParams = SteadyParams()) -> SteadyResult:
+                 params: SteadyParams = SteadyParams(), bound_update=None) -> SteadyResult:
     """Steady rolling tractions for the creepages xi, eta (dimensionless) and spin phi (1/mm) under the
     pressure field (MPa, (ny, nx); the contact is where it is > 0) with friction coefficient mu (math.inf:
-    no friction limit, the linear theory). `initial`: a traction (2, ny, nx) to start from (a warm start).
+    no friction limit, the linear theory; or a local coefficient per cell, (ny, nx), solver.friction). `initial`: a traction (2, ny, nx) to start from (a warm start).
     Kalker's sign convention (module docstring). Raises ContactEdgeError if the contact touches the grid's
-    leading column (the upwind difference needs one cell ahead), ConvergenceError after max_sweeps."""
+    leading column (the upwind difference needs one cell ahead), ConvergenceError after max_sweeps.
+    bound_update(slip, traction, stick): called after each sweep with the slip per unit rolled distance (2, ny, nx)
+    and the traction of the sweep and the stick cells; returns None when the bound is consistent with them, else the
+    new bound (MPa, (ny, nx)) for the next sweep (a friction law, solver.friction.steady); the solve stops when a
+    sweep changes no traction beyond tol and the bound is consistent."""
     grid = problem.grid
     pressure = np.asarray(pressure, dtype=float)
     if pressure.shape != grid.shape or not np.all(np.isfinite(pressure)) or np.any(pressure < 0):
         raise InputError(f"pressure: must be a finite, non-negative array of the grid's shape {grid.shape}")
-    if not (mu > 0):
+    local = np.ndim(mu) > 0           # a local coefficient per cell (solver.friction)
+    if not local and not (mu > 0):
         raise InputError(f"mu = {mu!r}: must be > 0 (math.inf for no friction limit)")
     for name, v in (("xi", xi), ("eta", eta), ("phi", phi)):
         if not math.isfinite(v):
@@ -156,7 +162,13 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
     if contact[:, -1].any() or contact[:, 0].any():
         raise ContactEdgeError("the contact reaches the grid's first or last column: the steady upwind "
                                "difference needs one free cell ahead of and behind the contact in every row")
-    bound = np.where(contact, mu * pressure if math.isfinite(mu) else np.inf, 0.0)
+    if local:
+        mu = np.asarray(mu, dtype=float)
+        if mu.shape != grid.shape or not np.all(np.isfinite(mu[contact]) & (mu[contact] > 0)):
+            raise InputError(f"mu: a local coefficient must be finite and > 0 on the contact, of shape {grid.shape}")
+        bound = np.where(contact, mu * pressure, 0.0)
+    else:
+        bound = np.where(contact, mu * pressure if math.isfinite(mu) else np.inf, 0.0)
     rigid = problem.rigid_slip(xi, eta, phi, pressure)
     tau = np.zeros((2,) + grid.shape) if initial is None else np.array(initial, dtype=float)
     if tau.shape != (2,) + grid.shape or not np.all(np.isfinite(tau)):
@@ -171,7 +183,8 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
     dp[:, :, :-1] -= tau[:, :, 1:]
     lo, hi = _row_ranges(contact)
     disp = problem.displacement(dp)
-    scale = float(np.max(bound[contact])) if math.isfinite(mu) else None
+    inv_dx = 1.0 / grid.dx
+    scale = float(np.max(bound[contact])) if local or math.isfinite(mu) else None
     change = math.inf
     stages = sweep_stages(problem.with_flow, params.omega)
     stage, changes = 0, []
@@ -179,6 +192,11 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
         with_flow, omega = stages[stage]
         change = _sweep_rows(problem, rigid, tau, dp, status, bound, disp, lo, hi, omega, with_flow)
         ref = scale if scale is not None else max(float(np.max(np.hypot(tau[0], tau[1]))), 1e-300)
+        if bound_update is not None:   # the slip of this sweep is rigid + A dp / dx (module docstring)
+            new_bound = bound_update(rigid + disp * inv_dx, tau, status == _sweep.STICK)
+            if new_bound is not None:
+                bound[...] = new_bound
+                continue
         if change <= params.tol * ref:
             break
         changes.append(change / ref)
@@ -187,7 +205,8 @@ def solve_steady(problem: SteadyRolling, pressure, mu, xi=0.0, eta=0.0, phi=0.0,
     else:
         raise ConvergenceError("steady rolling Gauss-Seidel did not converge", solver="solve_steady",
                                iterations=params.max_sweeps, residual=change / ref, tol=params.tol,
-                               regime=f"xi = {xi}, eta = {eta}, phi = {phi}, mu = {mu}")
+                               regime=f"xi = {xi}, eta = {eta}, phi = {phi}, mu = "
+                                      + (f"{mu.min():.6g} to {mu.max():.6g} (local)" if local else f"{mu}"))
     return _result(problem, tau, rigid, contact, bound, sweeps, change, (xi, eta, phi))
 
 

@@ -83,6 +83,7 @@ class CreepStep:
     wall_time: float
     cpu_time: float
     viscous_dissipation: float = 0.0      # N mm dissipated by viscoelastic bodies' dashpots in the step
+    friction: object = None     # with a friction law: its solver.friction.FrictionState (local mu, slip velocity, ...)
 
     @property
     def stick_cells(self) -> int:
@@ -98,13 +99,16 @@ def rolling_steps(distance: float, step: float) -> int:
 
 
 def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0, forces=None, initial="rest",
-               params: StepParams = StepParams(), memory=None) -> Iterator[CreepStep]:
+               params: StepParams = StepParams(), memory=None, friction=None) -> Iterator[CreepStep]:
     """Roll body 1 along +x of the world-fixed grid of `op` (bem.HalfSpaceOperator) from the initial state, in
     steps of `step` mm over at least `distance` mm (`rolling_steps`), yielding the initial state (step 0) and each
     step. profile(X, Y, centre) -> h (mm), the undeformed gap about the contact centre (solver.rolling.profiles);
     Fn (N) and mu as in `run_path`; creepages xi, eta and spin phi (1/mm), or forces = (Fx, Fy) N on body 1 in place
     of xi, eta; memory: the element states of viscoelastic bodies (solver.visco.ViscoMemory on op's effective pair, its
-    step time step / V), None for elastic ones. Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
+    step time step / V), None for elastic ones; friction: a friction law (solver.friction.LocalFriction, its speed
+    the rolling speed; mu is then its static coefficient): every step is solved consistently with it over the step's
+    time step / speed, and carries its FrictionState (local mu, slip velocity, temperatures); not both (elastic bodies
+    only). Raises InputError for bad arguments, ContactEdgeError for a grid too short for the distance (after
     the initial state, before rolling) or when the contact reaches the grid's edge, GrossSlidingError for
     |F| >= mu Fn, ConvergenceError if a solver fails."""
     n = rolling_steps(distance, step)
@@ -112,6 +116,9 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         raise InputError(f"[rolling] initial = {initial!r}: allowed values are {list(INITIAL_STATES)}")
     if not (Fn > 0 and mu > 0):
         raise InputError(f"Fn = {Fn!r} N, mu = {mu!r}: must be > 0")
+    if memory is not None and friction is not None:
+        raise InputError("roll_world: a friction law (friction) with viscoelastic bodies (memory) is not supported; "
+                         "give one of them")
     for name, v in (("xi", xi), ("eta", eta), ("phi", phi)):
         if not math.isfinite(v):
             raise InputError(f"[rolling] {name} = {v!r}: must be finite")
@@ -148,9 +155,21 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
             extra_n, extra_t = memory.terms()
             kw["extra_slip"] = extra_t if "extra_slip" not in kw else kw["extra_slip"] + extra_t
             kw["extra_displacement"] = extra_n
-        normal, tang, outer = solve_coupled_step(
-            op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal, tangential_params=params.tangential,
-            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess, **kw)
+        if friction is None:
+            normal, tang, outer = solve_coupled_step(
+                op, h, Fn, F, p_prev, tau_prev, mu=mu, normal_params=params.normal,
+                tangential_params=params.tangential, coupling_tol=params.coupling_tol, max_outer=params.max_outer,
+                pressure_guess=guess, **kw)
+            local = None
+        else:
+            normal, tang, outer, local = friction.step(
+                lambda m, last, accuracy: solve_coupled_step(
+                    op, h, Fn, F, p_prev, tau_prev, mu=m, normal_params=params.normal,
+                    tangential_params=params.loosened(accuracy), coupling_tol=params.coupling_tol,
+                    max_outer=params.max_outer, **last.warm_start(guess), **kw),
+                op=op, dt=step / friction.speed if friction.speed else None,
+                previous_mu=None if previous is None else previous.friction.mu,
+                moved=(0, 0) if previous is None else (0, round((centre - previous.centre) / grid.dx)))
         check_contact_inside(normal.contact, k, (centre, 0.0))
         viscous = 0.0
         if memory is not None:
@@ -165,7 +184,8 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
         else:
             creep = (float(tang.shift_increment[0]) / step, float(tang.shift_increment[1]) / step)
         return CreepStep(k, centre, normal, tang, -np.asarray(tang.force, dtype=float), moment, (*creep, phi),
-                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0, viscous)
+                         np.array(creep) * step, outer, time.perf_counter() - t0, time.process_time() - c0, viscous,
+                         local)
 
     rec = solve(0, 0.0, None, "rest")
     if initial == "cattaneo":

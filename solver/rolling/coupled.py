@@ -26,7 +26,7 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
                        coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None,
-                       extra_displacement=None, normal=None):
+                       extra_displacement=None, initial_traction=None, initial_region=None, normal=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -36,7 +36,8 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     Fn : normal force (N). F : (Fx, Fy) tangential force on the substrate (N), or None with `shift`.
     previous_pressure : (ny, nx) p' of the previous step (MPa), or None for zero (virgin contact).
     previous_traction : (2, ny, nx) tau' of the previous step (MPa).
-    mu : Coulomb friction coefficient (the bound is g = mu p).
+    mu : Coulomb friction coefficient (the bound is g = mu p), or a local coefficient per element (ny, nx), as a
+        friction law gives it (solver.friction).
     normal_params, tangential_params : the inner solvers' tolerances.
     coupling_tol : stop when max|p_k - p_{k-1}| <= coupling_tol max p_k and
         max|tau_k - tau_{k-1}| <= coupling_tol mu max p_k.
@@ -51,6 +52,10 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     extra_displacement : (ny, nx) mm, a given normal displacement of the step added to the normal problem's
         (solve_normal's `extra_displacement`), e.g. the history displacement of viscoelastic bodies (solver.visco); it
         is part of the returned NormalResult's `displacement`.
+    initial_traction : (2, ny, nx) MPa, a warm start of the tangential solve (default: the previous traction), e.g.
+        the last iterate of a friction law's iteration (solver.friction.transient). Only the start changes.
+    initial_region : (ny, nx) int8, the stick/slip division of the solve that gave `initial_traction`
+        (solve_tangential's `previous_region`: its slip elements start on the new bound).
     normal : a NormalResult of this profile and Fn solved before, taken as the normal solution (uncoupled materials
         without an extra_displacement only, whose normal problem depends on the gap and Fn alone; ignored when
         coupled; InputError with an extra_displacement).
@@ -61,8 +66,10 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     TangentialResult's `displacement` is the surface displacement A^tt tau + A^tz p (mm), so that
     s = u - u' - dU between two steps.
     """
-    if not (mu > 0):
+    local = np.ndim(mu) > 0
+    if not (np.all(np.asarray(mu) > 0) if local else mu > 0):
         raise InputError(f"mu = {mu!r}: the friction coefficient must be > 0")
+    mu_max = float(np.max(mu)) if local else mu
     shape = op.grid.shape
     p_prev = np.zeros(shape) if previous_pressure is None else np.asarray(previous_pressure, dtype=float)
     tau_prev = np.asarray(previous_traction, dtype=float)
@@ -84,12 +91,12 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
             raise InputError("solve_coupled_step: a normal solution given with an extra_displacement (its normal "
                              "problem depends on it)")
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
-                                params=tangential_params)
+                                initial=initial_traction, previous_region=initial_region, params=tangential_params)
         if given is not None:
             tang = replace(tang, displacement=tang.displacement - given)
         return normal, tang, 1
 
-    tau = tau_prev.copy()
+    tau = (tau_prev if initial_traction is None else np.asarray(initial_traction, dtype=float)).copy()
     p = p_prev.copy()
     p_guess = initial_p
     change = np.inf
@@ -104,14 +111,14 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
             extra = extra + given
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, initial=tau,
                                 extra_slip=extra,
-                                previous_region=None if outer == 1 else tang.region,
+                                previous_region=initial_region if outer == 1 else tang.region,
                                 params=tangential_params)
         n_products += normal.iterations
         t_products += tang.iterations
         t_steps += tang.steps
         pmax = float(normal.pressure.max())
         dp = float(np.abs(normal.pressure - p).max()) / pmax
-        dt = float(np.abs(tang.traction - tau).max()) / (mu * pmax)
+        dt = float(np.abs(tang.traction - tau).max()) / (mu_max * pmax)
         change = max(dp, dt)
         p, tau, p_guess = normal.pressure, tang.traction, normal.pressure
         if outer > 1 and change <= coupling_tol:
@@ -122,6 +129,6 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
                     replace(tang, iterations=t_products, steps=t_steps, displacement=total), outer)
     raise ConvergenceError("Panagiotopoulos loop (coupled normal/tangential) did not converge",
                            solver="coupled", iterations=max_outer, residual=change, tol=coupling_tol,
-                           regime=f"beta = {op.materials.beta:.4g}, mu = {mu}, "
-                                  + (f"f_t = {float(np.hypot(*np.asarray(F, float))) / (mu * Fn):.4g}"
+                           regime=f"beta = {op.materials.beta:.4g}, mu = {mu_max}{' (largest local)' if local else ''}, "
+                                  + (f"f_t = {float(np.hypot(*np.asarray(F, float))) / (mu_max * Fn):.4g}"
                                      if F is not None else f"prescribed shift {tuple(shift)} mm"))

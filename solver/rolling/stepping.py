@@ -172,6 +172,8 @@ class StepState:
     traction: np.ndarray            # (2, ny, nx) MPa
     rigid_shift: np.ndarray         # (2,) mm, U
     approach: float = 0.0           # mm
+    mu: np.ndarray | None = None    # (ny, nx) local friction coefficient at the end of the step (a friction law's
+                                    # memory state, solver.friction); None: Coulomb's constant mu
 
     @classmethod
     def initial(cls, shape) -> "StepState":
@@ -184,6 +186,16 @@ class StepParams:
     tangential: TangentialParams = field(default_factory=TangentialParams)
     coupling_tol: float = 1e-8
     max_outer: int = 30
+
+    def loosened(self, accuracy):
+        """The tangential parameters for a solve of a friction law's iteration (solver.friction.iteration) asking for
+        the relative accuracy `accuracy` (None: as they are): their tolerance raised to it in the inexact early
+        solves (at most 1e-3), lowered to it (at least a tenth of theirs) where the iteration's own residual has come
+        down to its tolerance and the solve's noise would hold it there."""
+        if accuracy is None or accuracy == self.tangential.tol:
+            return self.tangential
+        return TangentialParams(tol=min(max(accuracy, 0.1 * self.tangential.tol), 1e-3),
+                                max_iter=self.tangential.max_iter)
 
 
 @dataclass
@@ -200,10 +212,11 @@ class StepRecord:
     dissipation: float = 0.0      # frictional work of the step (N mm), solver.rolling.energy.frictional_work
     viscous_dissipation: float = 0.0   # work the viscous dashpots of viscoelastic bodies dissipated (N mm)
     memory_states: dict | None = None  # the viscoelastic element states after the step (MPa), by name
+    friction: object = None       # with a friction law: its solver.friction.FrictionState (local mu, slip velocity)
 
 
 def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepParams(),
-             state: StepState | None = None, memory=None) -> Iterator[StepRecord]:
+             state: StepState | None = None, memory=None, friction=None) -> Iterator[StepRecord]:
     """Step along `path` from `state` (default: unloaded), yielding one StepRecord per step.
 
     op: bem.HalfSpaceOperator; profile: callable profile(X, Y, centre) -> h (mm), see solver.rolling.profiles;
@@ -211,7 +224,10 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
     before any work: InputError if Fn <= 0 or |F| >= mu Fn at a step); mu friction coefficient. Each record
     carries the frictional work of its step (solver.rolling.energy.frictional_work). memory: the element states of
     viscoelastic bodies (solver.visco.ViscoMemory, of op's effective pair and path.step_time; restored to `state` by
-    the caller), None for elastic bodies. Raises ContactEdgeError if
+    the caller), None for elastic bodies. friction: a friction law (solver.friction.LocalFriction; mu is then its
+    static coefficient): each step is solved consistently with it (solver.friction.transient.friction_step, the
+    slip velocity over path.step_time) and its record carries the FrictionState, its state the local coefficient;
+    not with `memory` (InputError). Raises ContactEdgeError if
     the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
     solver fails.
 
@@ -227,6 +243,9 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
         raise InputError(f"load.Fn = {Fn} N: must be > 0")
     if not (mu > 0):
         raise InputError(f"load.mu = {mu}: must be > 0")
+    if memory is not None and friction is not None:
+        raise InputError("run_path: a friction law (friction) with viscoelastic bodies (memory) is not supported; "
+                         "give one of them")
     if path.normal_forces is not None:
         check_schedule(path.normal_forces, path.forces, mu)
     X, Y = op.grid.mesh()
@@ -243,19 +262,32 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
         t0 = time.perf_counter()
         centre = path.centres[n]
         h = profile(X, Y, centre)
-        guess = None
+        guess, cells = None, (0, 0)
         if state.step >= 0:
             # the pressure moves with the sphere: start the normal solve from the previous pressure
             # translated by the centre's move rounded to whole cells (exact when dW is a multiple of dx;
             # a bilinear sub-cell shift smears the contact edge and measured worse: 10.0 vs 9.0 it/step)
-            guess = _moved(state.pressure, centre - path.centres[state.step], grid)
-        normal = None if known is None else known.solution(h, _force(path, Fn, n), state.pressure, guess)
-        extra_n, extra_t = (None, None) if memory is None else memory.terms()
-        normal, tangential, outer = solve_coupled_step(
-            op, h, _force(path, Fn, n), path.forces[n], state.pressure, state.traction, mu=mu,
-            normal_params=params.normal, tangential_params=params.tangential,
-            coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess,
-            extra_slip=extra_t, extra_displacement=extra_n, normal=normal)
+            move = centre - path.centres[state.step]
+            cells = (round(move[1] / grid.dy), round(move[0] / grid.dx))
+            guess = shifted_field(state.pressure, *cells)
+        Fn_n = _force(path, Fn, n)
+        normal = None if known is None else known.solution(h, Fn_n, state.pressure, guess)
+        if friction is None:
+            extra_n, extra_t = (None, None) if memory is None else memory.terms()
+            normal, tangential, outer = solve_coupled_step(
+                op, h, Fn_n, path.forces[n], state.pressure, state.traction, mu=mu,
+                normal_params=params.normal, tangential_params=params.tangential,
+                coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess,
+                extra_slip=extra_t, extra_displacement=extra_n, normal=normal)
+            local = None
+        else:
+            normal, tangential, outer, local = friction.step(
+                lambda m, last, accuracy, previous=state, h=h, F=path.forces[n], Fn_n=Fn_n, guess=guess, known=normal:
+                solve_coupled_step(op, h, Fn_n, F, previous.pressure, previous.traction, mu=m,
+                                   normal_params=params.normal, tangential_params=params.loosened(accuracy),
+                                   coupling_tol=params.coupling_tol, max_outer=params.max_outer, normal=known,
+                                   **last.warm_start(guess)),
+                op=op, dt=path.step_time, previous_mu=state.mu, moved=cells)
         check_contact_inside(normal.contact, n, centre)
         viscous, states = 0.0, None
         if memory is not None:
@@ -263,9 +295,11 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             tangential = replace(tangential, displacement=total)
             viscous, states = memory.dissipation, memory.states()
         state = StepState(n, normal.pressure, tangential.traction,
-                          state.rigid_shift + tangential.shift_increment, normal.approach)
+                          state.rigid_shift + tangential.shift_increment, normal.approach,
+                          None if local is None else local.mu)
         work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
-        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, viscous, states)
+        yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, viscous, states,
+                         local)
 
 
 def _force(path, Fn, n) -> float:

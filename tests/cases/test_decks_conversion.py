@@ -133,7 +133,6 @@ FRICTION = ("  0.30   0.30                      FSTAT, FKIN", "  0.2 0.1 100.0 0
      "control digit M (MATER) = 3 (line 7)", "three blended flexibilities; rollcontact's solver.fidelity = 'fastsim' is "
                                              "another variant"),
     ([("  203100", "  223100"), HERTZIAN], "control digit B (BOUND) = 2 (line 6)", "elliptic traction bound"),
-    ([("  022020  ", "  422020  "), FRICTION], "control digit L (FRCLAW) = 4 (line 7)", "exponential law"),
     ([("   1   1   ", "   1   2   "), ("     B(1..6): h", "\n  -9 9 -9 9 0 0   PL(1..6)\n% B(1..6): h")],
      "IPLAN = 2 (line 16)", "planform"),
     ([("0.004  0.0  0.004", "0.004  0.001  0.004")], "B(2) = 0.001 (line 17)", "turned in the plane"),
@@ -258,3 +257,35 @@ def test_viscoelastic_bodies_map_to_standard_linear_solids(tmp_path):
     assert p.converted and m["visco1"] == "sls" and m["E1"] == E and m["tau1"] == 0.01
     assert m["E1_relaxed"] == pytest.approx(E / 2) and m["E2"] == pytest.approx(E / 4) and "visco2" not in m
     assert p.draft.sections["rolling"]["speed"] == 20000.0
+
+
+def test_slip_velocity_laws_and_temperatures_map_to_friction_and_thermal(tmp_path):
+    """L = 4 in steady rolling: [friction] law = "exponential" with FKIN, FEXP1, SABSH1 (mm/s) and the memory MEMDST,
+    MEM_S0 (the second term left out at FEXP2 = 0); the temperatures of ertz_temperature (H = 3): [thermal] with LAMBDA
+    W/(mm K) and DENS kg/mm^3 in W/(m K) and kg/m^3 (docs/friction.md)."""
+    text = BASE.replace("  022020  ", "  422020  ", 1).replace(
+        FRICTION[0], FRICTION[1].replace("0.0  0.0   MEMDST", "0.003  1.0   MEMDST"), 1)
+    (tmp_path / "law.inp").write_text(text)
+    (p,) = rollcontact.import_contact(tmp_path / "law.inp").problems
+    assert p.converted, [u.text() for u in p.draft.unsupported]
+    assert p.draft.sections["friction"] == {"law": "exponential", "mu_kin": 0.2, "mu_1": 0.1, "s_1": 100.0,
+                                            "memory_distance": 0.003, "memory_s0": 1.0}
+    assert "mu" not in p.draft.sections["load"]
+    scene = rollcontact.Scene.from_toml_text(p.draft.toml(["law"]))
+    assert scene.load.mu == pytest.approx(0.3) and scene.friction.memory_distance == 0.003   # mu(0) = 0.2 + 0.1
+    ertz = rollcontact.import_contact(EXAMPLES / "ertz_temperature.inp.gz").problems
+    assert all(q.converted for q in ertz)
+    th = ertz[-1].draft.sections["thermal"]
+    assert th["conductivity1"] == pytest.approx(50.0) and th["density2"] == pytest.approx(7850.0)
+    assert (th["heat_capacity1"], th["T_bulk1"], th["T_bulk2"]) == (450.0, 0.0, 150.0)
+
+
+def test_a_friction_law_in_a_shift_is_refused_naming_why(tmp_path):
+    text = (DECKS / "shift_history.inp").read_text()
+    text = text.replace("  022020      L-D-C-M-Z-E", "  422020      L-D-C-M-Z-E", 1).replace(
+        "  0.40   0.40                      FSTAT, FKIN", "  0.3 0.1 10.0 0.0 1.0   FKIN FEXP1 SABSH1 FEXP2 SABSH2\n"
+        "  0.0  0.0   MEMDST MEM_S0", 1)
+    (tmp_path / "shift.inp").write_text(text)
+    shift = rollcontact.import_contact(tmp_path / "shift.inp").problems[-1]
+    texts = [u.text() for u in shift.draft.unsupported]
+    assert not shift.converted and any("L (FRCLAW) = 4" in t and "in a shift (T = 1)" in t for t in texts), texts

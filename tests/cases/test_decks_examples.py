@@ -20,7 +20,7 @@ EXAMPLES = Path(__file__).resolve().parents[1] / "data" / "contact_examples"
 
 #: deck: (status, converted cases) -- the importer's verdict (docs/contact_decks.md §5 says why)
 VERDICT = {"bentall": ("no", 0), "carter2d": ("no", 0), "catt_to_cart": ("partly", 59), "cattaneo": ("yes", 2),
-           "conformal": ("no", 0), "ertz_temperature": ("no", 0), "fastsim": ("partly", 1),
+           "conformal": ("no", 0), "ertz_temperature": ("yes", 4), "fastsim": ("partly", 1),
            "mbench_a22_kpec": ("no", 0), "mbench_a22_left": ("yes", 21), "mbench_a22_right": ("yes", 21),
            "mbench_a22_varfric": ("no", 0), "plastic_3bl": ("no", 0), "spence35": ("no", 0), "subsurf": ("no", 0),
            "tractcurv": ("partly", 30), "veldep_fric": ("no", 0), "visc_cylindr": ("no", 0), "wheelflat": ("no", 0)}
@@ -68,6 +68,7 @@ LIMITS = {"FX": 0.5, "FY": 0.5, "FS": 0.5, "approach": 0.05, "PMAX": 0.5, "conta
     ("cattaneo", lambda ps: ps[0]), ("cattaneo", lambda ps: ps[1]),           # compression; shift with traction
     ("tractcurv", lambda ps: ps[5]),                                          # steady rolling, partial slip
     ("fastsim", lambda ps: ps[0]),                                            # steady rolling with spin
+    ("ertz_temperature", lambda ps: ps[3]),                                   # the same with temperatures
     ("mbench_a22_right", lambda ps: ps[11]),                                  # wheel on rail, y = 5.5 mm
     ("catt_to_cart", lambda ps: ps[0]),                                       # Cattaneo to Carter, 57 cases
 ])
