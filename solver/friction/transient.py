@@ -72,17 +72,18 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
         normal, tang, _ = solution
         s = velocity(tang)
         p = normal.pressure
-        weight = p / max(float(p.max()), 1e-300)
         if law.velocity_dependent:
             value, slope = law.coefficient(s), law.slope(s)
             T = memory.step(previous, value, s, dt)
             dT = memory.step_slope(previous, value, slope, s, dt)
-            return T, np.where(tang.region == 2, -dT * self_coefficient * p / dt, 0.0), weight
-        if law.temperature_dependent:
+            J = np.where(tang.region == 2, -dT * self_coefficient * p / dt, 0.0)
+        elif law.temperature_dependent:
             temps = thermal.solve(frictional_flux(tang.traction, s), normal.contact)
             T = np.where(normal.contact, law.of_temperature(0.5 * (temps.T1 + temps.T2)), mu_static)
-            return T, np.zeros(shape), weight
-        return np.full(shape, law.mu), np.zeros(shape), weight
+            J = np.zeros(shape)
+        else:
+            T, J = np.full(shape, law.mu), np.zeros(shape)
+        return T, J, _bound_weight(tang, p, T)
 
     if law.kind == "coulomb":
         start = np.full(shape, law.mu)
@@ -104,6 +105,16 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
     feedback = law.steepest_slope() * self_coefficient * float(normal.pressure.max()) / dt if dt else 0.0
     state = FrictionState(done.mu, s, done.iterations, float(flux.sum()) * grid.cell_area, temps, feedback)
     return normal, tang, outer, state
+
+
+def _bound_weight(tang, p, T):
+    """The weight of each element's coefficient residual (CoefficientUpdate.observe): p / p_max where the
+    coefficient bounds the traction, 0 at a sticking element whose traction lies within the law's bound T p. There
+    the solution does not depend on the coefficient it was solved with (the same traction meets the conditions of
+    the problem with bound T p), so that coefficient needs no further solve: it is taken as the law's."""
+    weight = p / max(float(p.max()), 1e-300)
+    inside = (tang.region == 1) & (np.hypot(tang.traction[0], tang.traction[1]) <= T * p)
+    return np.where(inside, 0.0, weight)
 
 
 def _shifted(field, rows, cols):
