@@ -5,12 +5,13 @@ and the Strang-circulant inverses built from them (preconditioners, `HalfSpaceOp
 real: each spectral value is scaled, not rotated.
 The complex spectra are passed as float64 views (re, im interleaved along the last axis), so a symbol
 value applies to two neighbouring entries. On the small grids of a preconditioner the numpy route (one
-ufunc call per block and a temporary) costs more in call overhead than in arithmetic.
+ufunc call per block and a temporary) costs more in call overhead than in arithmetic. `out` may be `spec` itself
+(the operator scales in place): each entry is read before it is written.
 """
-import numba as nb
+from rollcontact.bem.compiled import kernel
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(f8[:, :, ::1], f8[:, ::1], f8[:, :, ::1])")
 def scale_1(spec, sym, out):
     """out = sym * spec for one field: spec, out (1, Py, 2*(Px//2+1)) float views; sym (Py, Px//2+1)."""
     py, pxh = sym.shape
@@ -21,7 +22,7 @@ def scale_1(spec, sym, out):
             out[0, j, 2 * k + 1] = s * spec[0, j, 2 * k + 1]
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(f8[:, :, ::1], f8[:, ::1], f8[:, ::1], f8[:, ::1], f8[:, :, ::1])")
 def scale_2(spec, sxx, sxy, syy, out):
     """(out_x, out_y) = [[sxx, sxy], [sxy, syy]] (spec_x, spec_y) for a symmetric 2x2 block of symbols."""
     py, pxh = sxx.shape

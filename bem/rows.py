@@ -9,14 +9,14 @@ O(ny nx^2) of direct sums. The convolution is circular with period L >= 2 nx - 1
 the nx outputs read back are not reached by the wrap-around. Plans are pyfftw objects with FFTW_ESTIMATE (1-D transforms of a few hundred points:
 measuring them costs more than it saves). Units: kernels in mm/MPa, changes in MPa, displacements in mm.
 """
-import numba as nb
 import numpy as np
 
 from rollcontact.bem._fftw import pyfftw
+from rollcontact.bem.compiled import kernel
 from rollcontact.bem.operator import fft_length
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(f8[:, :, ::1], i8, f8[:, :, ::1], i8)")
 def _accumulate(disp, first, result, nx):
     """disp[k, first + r, i] += result[k, r, i] for i < nx."""
     for k in range(2):
@@ -25,7 +25,7 @@ def _accumulate(disp, first, result, nx):
                 disp[k, first + r, i] += result[k, r, i]
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(c16[:, ::1], c16[:, ::1], c16[:, ::1], i8, c16[:, ::1], c16[:, :, ::1])")
 def _row_products(sxx, sxy, syy, first, spec, out):
     """out[k, r] = sum_l S_kl[first + r] spec[l] for the symmetric 2x2 block of row spectra (complex)."""
     rows = out.shape[1]

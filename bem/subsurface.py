@@ -52,9 +52,9 @@ from __future__ import annotations
 
 import math
 
-import numba as nb
 import numpy as np
 
+from rollcontact.bem.compiled import internal, kernel
 from rollcontact.bem.errors import InputError
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.operator import fft_length
@@ -73,7 +73,7 @@ _ROWS = {"s_xx": (0, 6, 11), "s_yy": (1, 7, 12), "s_zz": (2, 4, 3), "s_yz": (3, 
 ROWS = np.array([_ROWS[c] for c in COMPONENTS], dtype=np.int64)
 
 
-@nb.njit(cache=True, nogil=True)
+@internal
 def _log_plus(a, b, rho, rest2):
     """ln(a + rho) with rho^2 = a^2 + b^2 ... : rest2 = rho^2 - a^2 (> 0), written without cancellation for a < 0."""
     if a >= 0.0:
@@ -81,7 +81,7 @@ def _log_plus(a, b, rho, rest2):
     return math.log(rest2) - math.log(rho - a)
 
 
-@nb.njit(cache=True, nogil=True)
+@internal
 def _inv_plus(a, rho, rest2):
     """1/(a + rho), without cancellation for a < 0 (rest2 = rho^2 - a^2)."""
     if a >= 0.0:
@@ -89,7 +89,7 @@ def _inv_plus(a, rho, rest2):
     return (rho - a) / rest2
 
 
-@nb.njit(cache=True, nogil=True)
+@internal
 def _corners_at(X, Y, z, nu, out):
     """The 15 corner functions (divided by 4 pi) at one corner offset (X, Y) and depth z, into out[0:15]."""
     x2, y2, z2 = X * X, Y * Y, z * z
@@ -122,7 +122,7 @@ def _corners_at(X, Y, z, nu, out):
     out[14] = c * (2.0 * LY - 4.0 * nu * Y / s - 2.0 * zr * Y / s)
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(f8[::1], f8[::1], f8[::1], f8, f8, f8, f8[:, ::1])")
 def _element_kernels(X, Y, z, hx, hy, nu, out):
     """out[k, i] = [[C_k]] at the offsets (X[i], Y[i]) and depths z[i] of points from an element's centre."""
     f = np.empty(15)
@@ -150,27 +150,46 @@ def element_stresses(X, Y, z, dx, dy, nu, traction="p"):
     return {c: out[ROWS[m, column]].reshape(X.shape) for m, c in enumerate(COMPONENTS)}
 
 
-@nb.njit(cache=True, nogil=True)
-def _wrapped_kernels(nx, ny, dx, dy, z, nu, out):
+def _parity(axis: str) -> np.ndarray:
+    """The sign of each of the 15 kernels under the mirror axis -> -axis: a stress component changes sign once for
+    each index along that axis, and the response to q_x (q_y) once more under x -> -x (y -> -y)."""
+    return np.array([(-1.0) ** (component[2:].count(axis) + (load == "q_" + axis)) for load, component in KERNELS])
+
+
+#: signs of the kernels under x -> -x and y -> -y (element kernels of a centred element: exact mirror symmetries)
+PARITY_X, PARITY_Y = _parity("x"), _parity("y")
+
+
+@kernel("void(i8, i8, f8, f8, f8, f8, f8[::1], f8[::1], f8[:, :, ::1])")
+def _wrapped_kernels(nx, ny, dx, dy, z, nu, sign_x, sign_y, out):
     """All 15 kernels at depth z on the padded domain in wrap-around order: out[k, oy mod Py, ox mod Px] =
-    [[C_k]](ox dx, oy dy, z) for |ox| < nx, |oy| < ny (the rest of `out` is left as it is: zero). The corner
-    functions are evaluated once per corner of the (2 nx) x (2 ny) corner lattice, a row at a time."""
+    [[C_k]](ox dx, oy dy, z) for |ox| < nx, |oy| < ny (the rest of `out` is left as it is: zero). The quadrant
+    ox, oy >= 0 is evaluated, its corner functions once per corner of the (nx + 1) x (ny + 1) lattice at
+    ((ic - 1/2) dx, (jc - 1/2) dy), a row at a time; the other three quadrants are its mirror images with the signs
+    sign_x, sign_y of each kernel (PARITY_X, PARITY_Y)."""
     py, px = out.shape[1], out.shape[2]
-    prev = np.empty((2 * nx, 15))
-    cur = np.empty((2 * nx, 15))
+    prev = np.empty((nx + 1, 15))
+    cur = np.empty((nx + 1, 15))
     f = np.empty(15)
-    for jc in range(2 * ny):
-        Yc = (jc - ny + 0.5) * dy
-        for ic in range(2 * nx):
-            _corners_at((ic - nx + 0.5) * dx, Yc, z, nu, f)
+    for jc in range(ny + 1):
+        Yc = (jc - 0.5) * dy
+        for ic in range(nx + 1):
+            _corners_at((ic - 0.5) * dx, Yc, z, nu, f)
             for k in range(15):
                 cur[ic, k] = f[k]
         if jc > 0:
-            row = (jc - ny) % py          # offset oy = jc - 1 - (ny - 1)
-            for ic in range(1, 2 * nx):
-                col = (ic - nx) % px
+            oy = jc - 1
+            for ic in range(1, nx + 1):
+                ox = ic - 1
                 for k in range(15):
-                    out[k, row, col] = cur[ic, k] - cur[ic - 1, k] - prev[ic, k] + prev[ic - 1, k]
+                    v = cur[ic, k] - cur[ic - 1, k] - prev[ic, k] + prev[ic - 1, k]
+                    out[k, oy, ox] = v
+                    if ox > 0:
+                        out[k, oy, px - ox] = sign_x[k] * v
+                    if oy > 0:
+                        out[k, py - oy, ox] = sign_y[k] * v
+                        if ox > 0:
+                            out[k, py - oy, px - ox] = sign_x[k] * sign_y[k] * v
         prev, cur = cur, prev
 
 
@@ -242,7 +261,7 @@ class SubsurfaceStresses:
         spectra = self._kept.get(z)
         if spectra is None:
             if self._kernel_z != z:        # the kernels depend on z alone: kept for the next tractions at this depth
-                _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, z, self.nu, self._kernels)
+                _wrapped_kernels(g.nx, g.ny, g.dx, g.dy, z, self.nu, PARITY_X, PARITY_Y, self._kernels)
                 self._fft_kernels.execute()
                 self._kernel_z = z
                 if (len(self._kept) + 1) * self._kernel_spec.nbytes <= self._kept_bytes:
@@ -257,7 +276,7 @@ class SubsurfaceStresses:
         return out
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(c16[:, :, ::1], c16[:, :, ::1], i8[:, ::1], c16[:, :, ::1])")
 def _combine(kernel_spec, field_spec, rows, out):
     """out[m] = sum_t kernel_spec[rows[m, t]] * field_spec[t]: the spectral products of one layer."""
     for m in range(rows.shape[0]):
@@ -268,7 +287,7 @@ def _combine(kernel_spec, field_spec, rows, out):
                                 + kernel_spec[c, j, k] * field_spec[2, j, k])
 
 
-@nb.njit(cache=True, nogil=True)
+@kernel("void(f8[:, ::1], f8[::1], f8[::1], f8[::1])")
 def _invariants(s, vm, tresca, p1):
     """von Mises, max shear (s1 - s3)/2 and largest principal stress from (6, n) components (COMPONENTS order)."""
     for i in range(s.shape[1]):

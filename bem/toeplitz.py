@@ -43,13 +43,14 @@ class ToeplitzOperator:
         self.padded = (fft_length(2 * ny - 1), fft_length(2 * nx - 1))
         self._fft = fft_pairs((1, 2, 3), self.padded, self.threads, planner)
         py, px = self.padded
+        self._products = np.empty((3, py, px // 2 + 1), dtype=np.complex128)   # two outputs at most, and a term
         rows, cols = np.ix_(np.arange(-(ny - 1), ny) % py, np.arange(-(nx - 1), nx) % px)
         f1 = self._fft[1]
         spectra = {}
         for c, k in self.kernels.items():
             f1.real_in[0] = 0.0
             f1.real_in[0][rows, cols] = k
-            f1.forward.execute()
+            f1.forward()
             spectra[c] = f1.spec[0] / (py * px)            # c2r is unnormalised
         f1.real_in[...] = 0.0
         self._blocks = {"zz": np.array([[spectra["zz"]]]),
@@ -77,22 +78,24 @@ class ToeplitzOperator:
         self._fft_small = fft_pairs((1,), self.small, self.threads, planner)
 
     def _apply(self, fields, blocks, out, ffts=None):
-        """out[m] = sum_k conv(blocks[m, k], fields[k]) (complex spectra)."""
+        """out[m] = sum_k conv(blocks[m, k], fields[k]) (complex spectra; formed in `_products`, then handed to the
+        output batch's spectrum, which may be the input's)."""
         ffts = self._fft if ffts is None else ffts
         k, m = len(fields), len(blocks)
         ny, nx = self.grid.shape
         fin = ffts[k]
         for i, f in enumerate(fields):
             fin.real_in[i, :ny, :nx] = f
-        fin.forward.execute()
+        fin.forward()
         fout = ffts[m]
+        acc, scratch = self._products[:m], self._products[-1]
         for j in range(m):
-            acc = fout.spec_out[j]
-            np.multiply(blocks[j, 0], fin.spec[0], out=acc)
+            np.multiply(blocks[j, 0], fin.spec[0], out=acc[j])
             for i in range(1, k):
-                np.multiply(blocks[j, i], fin.spec[i], out=fin.scratch)
-                acc += fin.scratch
-        fout.backward.execute()
+                np.multiply(blocks[j, i], fin.spec[i], out=scratch)
+                acc[j] += scratch
+        fout.spec[...] = acc
+        fout.backward()
         if out is None:
             out = np.empty((m, ny, nx))
         out[...] = fout.real_out[:m, :ny, :nx]
@@ -129,9 +132,9 @@ class ToeplitzOperator:
         f = self._fft_small[1]
         f.real_in[0] = 0.0
         f.real_in[0, :ny, :nx] = residual
-        f.forward.execute()
-        np.multiply(self._inverse[0, 0], f.spec[0], out=f.spec_out[0])
-        f.backward.execute()
+        f.forward()
+        np.multiply(self._inverse[0, 0], f.spec[0], out=f.spec[0])
+        f.backward()
         if out is None:
             out = np.empty((ny, nx))
         out[...] = f.real_out[0, :ny, :nx]

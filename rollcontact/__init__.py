@@ -33,11 +33,7 @@ def __getattr__(name):
     """The API (and __version__, from the package metadata) is looked up on first use, so that `import rollcontact`
     and `rollcontact --help` stay fast."""
     if name == "__version__":
-        from importlib import metadata
-        try:
-            return metadata.version("rollcontact")
-        except metadata.PackageNotFoundError:  # pragma: no cover - a source tree that is not installed
-            return "unknown"
+        return _installed_version()
     if name in _API:
         from rollcontact.cases import api
         return getattr(api, name)
@@ -46,3 +42,31 @@ def __getattr__(name):
 
 def __dir__():
     return sorted(set(globals()) | set(_API))
+
+
+def _installed_version() -> str:
+    """The installed distribution's version: the Version line of its METADATA, found on sys.path as
+    importlib.metadata would find it (which itself costs a run tens of milliseconds to import); importlib.metadata
+    where the file is not found that way."""
+    import os
+    import sys
+    for entry in sys.path:
+        try:
+            names = [n for n in os.listdir(entry or ".") if n.startswith("rollcontact-") and n.endswith(".dist-info")]
+        except OSError:
+            continue
+        for name in names:
+            try:
+                with open(os.path.join(entry or ".", name, "METADATA"), encoding="utf-8") as fh:
+                    for line in fh:
+                        if line.startswith("Version:"):
+                            return line.split(":", 1)[1].strip()
+                        if not line.strip():
+                            break
+            except OSError:
+                continue
+    from importlib import metadata
+    try:
+        return metadata.version("rollcontact")
+    except metadata.PackageNotFoundError:  # pragma: no cover - a source tree that is not installed
+        return "unknown"

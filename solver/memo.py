@@ -8,10 +8,10 @@ an entry is not offered again, so the product is then recomputed by FFT.
 """
 import weakref
 
-import numba as nb
+from rollcontact.bem.compiled import kernel
 
 
-@nb.njit(cache=True)
+@kernel("b1(f8[::1], f8[::1])")
 def _same(a, b):
     """a == b element by element (flat float64 views), stopping at the first difference."""
     for i in range(a.size):

@@ -100,12 +100,14 @@ SUMMARY_UNITS.update(VISCO_SUMMARY_UNITS)
 #: xi, eta (dimensionless) and the spin phi (1/mm) of the steady state or of the last step, the rolling direction
 #: (deg), the forces F_x, F_y (N) and the moment M_z (N mm) on the sphere (Kalker's convention), Kalker's linear
 #: forces, mu Fn, the stick fraction, the contact semi-axes a, b (mm), the peak pressure p0 (MPa); a transient also
-#: the distance rolled and its step (mm), the steady state beside it (_steady), the world grid, CPU and step times.
+#: the distance rolled and its step (mm), the steady state beside it (_steady), its grid (rolling_grid: 'contact',
+#: moving with the contact, or 'world', fixed to the substrate; grid_extent: its elements and extent in the rolling
+#: frame, text), CPU and step times.
 CREEP_SUMMARY_UNITS = {
     "mode": "-", "xi": "-", "eta": "-", "phi": "1/mm", "direction": "deg", "forces_prescribed": "-", "F_x": "N",
     "F_y": "N", "M_z": "N mm", "F_x_linear": "N", "F_y_linear": "N", "mu_Fn": "N", "stick_fraction": "-", "b": "mm",
     "initial": "-", "distance": "mm", "step": "mm", "F_x_steady": "N", "F_y_steady": "N", "M_z_steady": "N mm",
-    "xi_steady": "-", "eta_steady": "-", "p0_steady": "MPa", "world_grid": "-", "cpu_time": "s",
+    "xi_steady": "-", "eta_steady": "-", "p0_steady": "MPa", "rolling_grid": "-", "grid_extent": "-", "cpu_time": "s",
     "time_per_step": "s",
 }
 
@@ -191,7 +193,8 @@ class RunResult:
 
     * `history[name]`: 1-D arrays, one value per finished step (names and units: HISTORY_UNITS), e.g.
       `history["U_x"]` (mm), `history["F_x"]` (N), `history["period"]` (0 = loading phase).
-    * `fields[name]`: arrays of shape (len(field_steps), ny, nx) on the world-fixed grid `x` (nx,), `y` (ny,) in mm
+    * `fields[name]`: arrays of shape (len(field_steps), ny, nx) on the grid `x` (nx,), `y` (ny,) in mm (world-fixed;
+      in a [rolling] transient with summary rolling_grid 'contact' the grid moving with the contact, x from its centre)
       (names and units: FIELD_UNITS); `field_steps` lists the stored steps (0-based). `field(name, step)` picks one.
       A run of the 1-D MDR model stores no fields; its `x` holds the spring positions.
     * `summary`: plain values (names and units: SUMMARY_UNITS), e.g. `summary["state"]` (see `state`),

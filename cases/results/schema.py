@@ -114,7 +114,10 @@ SUMMARY = {
     "step": "transient: rolling step", "F_x_steady": "transient: the steady state's F_x beside it",
     "F_y_steady": "transient: the steady F_y", "M_z_steady": "transient: the steady M_z",
     "xi_steady": "transient: the steady state's xi (prescribed forces)", "eta_steady": "transient: the steady eta",
-    "p0_steady": "transient: the steady state's peak pressure", "world_grid": "transient: the world grid (ny, nx)",
+    "p0_steady": "transient: the steady state's peak pressure",
+    "rolling_grid": "transient: the grid of the steps, 'contact' (moving with the contact) or 'world' (fixed to the "
+                    "substrate)",
+    "grid_extent": "transient: that grid's elements and extent in the rolling frame",
     "time_per_step": "transient: mean wall time per rolling step", "cpu_time": "transient: process CPU time",
     "pressure_centroid_x": "viscoelastic bodies: the pressure centroid along the rolling direction (last step, or the "
                            "steady state's)",

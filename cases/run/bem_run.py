@@ -114,5 +114,5 @@ def _announce(progress, grid, path, op, scene):
     progress(f"grid {grid.nx} x {grid.ny} = {grid.size} elements (dx = {grid.dx}, dy = {grid.dy} mm), "
              f"{path.n_steps} steps, coupling {'on' if op.coupled else 'off'} (beta = {scene.material_pair.beta:.2e})")
     if not kernels_cached():
-        progress("compiling the numerical kernels (first run after an install: about 10 s on 2 cores, "
-                 "cached for later runs)")
+        progress("compiling the numerical kernels (first run after an install: about half a minute on 2 cores, "
+                 "kept for later runs)")

@@ -1,17 +1,21 @@
-"""One run of a [rolling] mode = "transient" scene: rolled on the world-fixed grid from an initial state
-(solver.creep.world; docs/theory.md §6, §11.5), with the steady state of the same scene solved beside it.
+"""One run of a [rolling] mode = "transient" scene: rolled from an initial state on the grid of [rolling] grid
+(Scene.transient_grid; FASTSIM always on the world-fixed grid), with the steady state of the same scene solved beside
+it (docs/theory.md §6, §11.5).
 
-The world-fixed grid has its x axis along [rolling] direction (the frame of the steady run) and is just long enough
-for the rolled distance plus the contact: x from -(a_r + margin) to distance + a_r + margin, y over +-(b_r + margin),
-with a_r, b_r the Hertz contact's half-extents in the rolling frame (10 % allowance for an ellipse) and the scene's
-margin (at least one element); the summary's `world_grid` and the progress log state it. The contact centre starts
-at x = 0 and moves by [rolling] step (default dx) per step.
+Both grids have their x axis along [rolling] direction (the frame of the steady run), y over +-(b_r + margin), with
+a_r, b_r the Hertz contact's half-extents in the rolling frame (10 % allowance for an ellipse) and the scene's margin
+(at least one element); the summary's `rolling_grid` names the grid and `grid_extent` states it, as the progress log.
+* 'contact' (solver.creep.moving): the grid moves with the contact, x from the contact centre, from -(a_r + margin,
+  at least a step) to a_r + margin; its cost per step does not grow with the distance rolled.
+* 'world' (solver.creep.world): the grid is fixed to the substrate and just long enough for the rolled distance plus
+  the contact: x from -(a_r + margin) to distance + a_r + margin; the contact centre starts at x = 0.
+The contact centre moves by [rolling] step (default dx) per step.
 
 What is stored: /history one row per step, step 0 the initial state (at rest), with the usual names (W_x, W_y the
-contact centre in the grid's frame, mm; U_x, U_y the accumulated rigid slip of the sphere relative to the substrate,
-sum of step (xi, eta), mm; F_x, F_y the force on the substrate, N; stick_area; iterations: FFT products of the step)
-and M_z (N mm, on the sphere, about the contact centre), xi, eta (the creepages of the step: prescribed, or found
-for prescribed forces); /fields the snapshots of the stored steps on the world grid (output.fields: 'reversals',
+contact centre's travel from its start, along the rolling direction and across it, mm; U_x, U_y the accumulated rigid
+slip of the sphere relative to the substrate, sum of step (xi, eta), mm; F_x, F_y the force on the substrate, N;
+stick_area; iterations: FFT products of the step) and M_z (N mm, on the sphere, about the contact centre), xi, eta (the creepages of the step: prescribed, or found
+for prescribed forces); /fields the snapshots of the stored steps on the run's grid (output.fields: 'reversals',
 the default, stores the initial state, each further contact length 2a rolled and the last step; 'all', 'last',
 'none'), with their usual meaning (tau on the substrate, slip of the substrate relative to the sphere over the step,
 mm). The summary gives the last step in Kalker's convention (F_x, F_y, M_z on the sphere; xi, eta, phi) beside the
@@ -36,6 +40,7 @@ from rollcontact.cases.scene.friction import local_friction
 from rollcontact.cases.run.rolling_frame import creep_grid, linear_forces, rolling_frame_gap
 from rollcontact.cases.run.viscoelastic import MILLI, pressure_centroid, scene_memory, steady_outputs, steady_visco
 from rollcontact.cases.scene.scene import Scene
+from rollcontact.solver.creep.moving import roll_moving
 from rollcontact.solver.creep.world import roll_world, rolling_steps
 from rollcontact.solver.normal import NormalParams
 from rollcontact.solver.rolling import FunctionProfile, StepParams
@@ -58,14 +63,15 @@ def run_transient(scene: Scene, t_start: float, *, progress=None, choice=None) -
     step = ro.step if ro.step is not None else scene.spacing[0]
     distance = ro.distance if ro.distance is not None else 8.0 * scene.rolling_half_length
     n = rolling_steps(distance, step)
-    grid = creep_grid(scene, travel=n * step)
+    frame = "world" if fast else scene.transient_grid       # FASTSIM's transient steps the world-fixed grid
+    grid = creep_grid(scene, travel=n * step) if frame == "world" else creep_grid(scene, trail=step)
     op = fast_operator(scene, grid) if fast else scene_operator(scene, grid)
     x0, x1 = grid.x[0] - grid.dx / 2, grid.x[-1] + grid.dx / 2
     y0, y1 = grid.y[0] - grid.dy / 2, grid.y[-1] + grid.dy / 2
     world = f"{grid.nx} x {grid.ny} = {grid.size} elements over x = [{x0:.6g}, {x1:.6g}] x y = [{y0:.6g}, {y1:.6g}] mm"
     if progress:
         model = "FASTSIM ('fastsim', no coupling)" if fast else f"coupling {'on' if op.coupled else 'off'}"
-        progress(f"transient rolling on the world-fixed grid {world} (x along the rolling direction "
+        progress(f"transient rolling on the {frame}-fixed grid {world} (x along the rolling direction "
                  f"{ro.direction} deg), {n} steps of {step:.6g} mm from the {ro.initial or 'rest'} state, {model}")
     xi, eta, phi = scene.creepages
     forces = scene.prescribed_forces
@@ -81,10 +87,11 @@ def run_transient(scene: Scene, t_start: float, *, progress=None, choice=None) -
         params = StepParams(normal=NormalParams(tol=tol, max_iter=scene.solver.max_iter),
                             tangential=TangentialParams(tol=tol, max_iter=scene.solver.max_iter),
                             coupling_tol=max(tol, 1e-10))
-        records = roll_world(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
-                             distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
-                             phi=phi, forces=forces, initial=ro.initial or "rest", params=params, memory=memory,
-                             friction=local_friction(scene, grid))
+        roll = roll_world if frame == "world" else roll_moving
+        held = dict(memory=memory, friction=local_friction(scene, grid)) if frame == "world" else {}
+        records = roll(op, FunctionProfile(rolling_frame_gap(scene)), Fn=scene.load.Fn, mu=scene.load.mu,
+                       distance=distance, step=step, xi=0.0 if forces else xi, eta=0.0 if forces else eta,
+                       phi=phi, forces=forces, initial=ro.initial or "rest", params=params, **held)
     keep = _stored_steps(scene.output.fields, n, math.ceil(2.0 * scene.rolling_half_length / step - 1e-9))
     rows, fields, stored = [], {k: [] for k in FIELDS}, []
     for rec in records:
@@ -112,7 +119,8 @@ def run_transient(scene: Scene, t_start: float, *, progress=None, choice=None) -
                    F_x_linear=linear[0], F_y_linear=linear[1], mu_Fn=scene.load.mu * last.normal.force,
                    stick_fraction=float(last.stick_cells / contact.sum()), a=a, b=b,
                    p0=float(np.max(last.normal.pressure)), p0_steady=float(np.max(steady_normal.pressure)),
-                   world_grid=world, nx=grid.nx, ny=grid.ny, elements=grid.size, steps=n + 1, steps_planned=n + 1,
+                   rolling_grid=frame, grid_extent=world, nx=grid.nx, ny=grid.ny, elements=grid.size, steps=n + 1,
+                   steps_planned=n + 1,
                    iterations=int(history["iterations"].sum()), wall_time=wall, cpu_time=cpu,
                    time_per_step=float(history["wall_time"][1:].mean()), **choice.summary())
     if fast:
@@ -168,7 +176,7 @@ def _row(rec, grid) -> dict:
 
 
 def _fields(rec) -> dict:
-    """The snapshot of one step on the world grid (tau on the substrate; u of the substrate relative to the sphere,
+    """The snapshot of one step on the run's grid (tau on the substrate; u of the substrate relative to the sphere,
     the tangential displacement A tau (+ A^tz p when coupled); slip of the step, mm)."""
     nr, tr = rec.normal, rec.tangential
     u = tr.displacement

@@ -7,13 +7,15 @@ import numpy as np
 from rollcontact.cases.results.hdf5 import compress_snapshot
 from rollcontact.cases.results.run_result import (FIELD_NAMES, FRICTION_FIELDS, FRICTION_HISTORY, HISTORY_NAMES,
                                                    VISCO_HISTORY_UNITS)
+from rollcontact.cases.results.snapshots import SnapshotStack
 from rollcontact.cases.run.viscoelastic import pressure_centroid
 
 
 class StepRecorder:
     """Per-step history and the snapshots of the steps in `snapshot_steps`; a restart starts from the stored history
     and snapshots up to its step (`restart`: cases.run.restart.RestartSource). With `compress`, each snapshot is
-    also kept as the gzip chunks of the run file (`chunks`), compressed once however often the file is written.
+    kept only as the gzip chunks of the run file (`chunks`, compressed once however often the file is written; read
+    back by `field` and the SnapshotStack fields of `arrays`), else as arrays (`fields`).
     `transverse`: the unit vector across Ft (Scene.transverse_direction), along which U_perp is measured.
     A scene with a speed adds the history column `time` (step n ends at n path.step_time); one with a friction law
     (`friction`) the fields mu and slip_velocity and the history columns friction_iterations, frictional_power and
@@ -51,9 +53,10 @@ class StepRecorder:
                     self.history[k] = list(np.asarray(stored[k])[:n]) if k in stored else [np.nan] * n
             steps, fields = restart.snapshots()
             self.stored = [int(s) for s in steps]
-            self.fields = {k: list(fields[k]) for k in self.field_names}
             if compress:
                 self.chunks = {k: [compress_snapshot(v) for v in fields[k]] for k in self.field_names}
+            else:
+                self.fields = {k: list(fields[k]) for k in self.field_names}
 
     @property
     def n_steps(self) -> int:
@@ -95,10 +98,16 @@ class StepRecorder:
         """Store the fields of step `rec`."""
         self.stored.append(rec.step)
         for k, v in field_values(rec).items():
-            v = np.array(v, dtype=field_dtype(k))
-            self.fields[k].append(v)
             if self.compress:
-                self.chunks[k].append(compress_snapshot(v))
+                self.chunks[k].append(compress_snapshot(np.asarray(v, dtype=field_dtype(k))))
+            else:
+                self.fields[k].append(np.array(v, dtype=field_dtype(k)))
+
+    def field(self, name: str, i: int) -> np.ndarray:
+        """The (ny, nx) snapshot i (in the order stored) of field `name`."""
+        if self.compress:
+            return SnapshotStack([self.chunks[name][i]], self.shape, field_dtype(name))[0]
+        return self.fields[name][i]
 
     def keep_last_step_fields(self):
         """A run that stopped early keeps the fields of its last finished step (what output.fields = 'reversals'
@@ -107,13 +116,18 @@ class StepRecorder:
             self.snapshot(self.last)
 
     def trim_to_whole_steps(self):
-        """After an interrupt, which may come between the appends of one step: keep the steps recorded in full
-        (and forget `last` when its appends were cut short)."""
+        """After an interrupt, which may come between the appends of one step: keep the steps recorded in full, up to
+        the last step `add` finished (a row whose step was cut short before `last` was set goes, with its snapshot),
+        and forget `last` when its own appends were cut short."""
         n = min(len(v) for v in self.history.values())
+        if self.last is not None and n and self.history["step"][n - 1] != self.last.step \
+                and self.last.step in self.history["step"][:n]:
+            n = self.history["step"].index(self.last.step) + 1     # a row appended, the step not yet done: drop it
         for v in self.history.values():
             del v[n:]
-        m = min([len(self.stored)] + [len(v) for v in self.fields.values()]
-                + ([len(v) for v in self.chunks.values()] if self.compress else []))
+        m = min([len(self.stored)] + [len(v) for v in (self.chunks if self.compress else self.fields).values()])
+        while m and n and self.stored[m - 1] > self.history["step"][n - 1]:
+            m -= 1
         del self.stored[m:]
         for v in list(self.fields.values()) + list(self.chunks.values()):
             del v[m:]
@@ -121,30 +135,28 @@ class StepRecorder:
             self.last = None
 
     def arrays(self, extra_snapshot=False) -> tuple[dict, dict, np.ndarray, dict]:
-        """(history, fields, stored steps, chunks) as numpy arrays; fields of shape (snapshots, ny, nx), chunks
-        their compressed snapshots (empty without `compress`). extra_snapshot: add the fields of the last
-        recorded step when they are not stored (the restart point of a checkpoint), without storing them; the
-        fields are then only placeholders of their shape and dtype (zero-copy views), since a checkpoint writes
-        the compressed chunks alone."""
+        """(history, fields, stored steps, chunks): history as numpy arrays; fields of shape (snapshots, ny, nx),
+        arrays, or with `compress` SnapshotStacks of the chunks (decompressed when read), and chunks the compressed
+        snapshots (empty without `compress`). extra_snapshot: add the fields of the last recorded step when they are
+        not stored (the restart point of a checkpoint), without storing them."""
         ny, nx = self.shape
-        stored, snaps, chunks = list(self.stored), {k: list(v) for k, v in self.fields.items()}, \
-            {k: list(v) for k, v in self.chunks.items()}
+        stored = list(self.stored)
+        snaps = {k: list(v) for k, v in (self.chunks if self.compress else self.fields).items()}
         if extra_snapshot and self.last is not None and (not stored or stored[-1] != self.last.step):
             stored.append(self.last.step)
             for k, v in field_values(self.last).items():
                 v = np.asarray(v, dtype=field_dtype(k))
-                snaps[k].append(v)
-                if self.compress:
-                    chunks[k].append(compress_snapshot(v))
+                snaps[k].append(compress_snapshot(v) if self.compress else v)
         fields = {}
         for k, v in snaps.items():
             dtype = field_dtype(k)
-            if extra_snapshot and self.compress:
-                fields[k] = np.broadcast_to(np.zeros((), dtype), (len(stored), ny, nx))
+            if self.compress:
+                fields[k] = SnapshotStack(v, (ny, nx), dtype)
             else:
                 fields[k] = np.array(v, dtype=dtype) if stored else np.zeros((0, ny, nx), dtype=dtype)
         history = {k: np.asarray(v) for k, v in self.history.items()}
-        return history, fields, np.array(stored, dtype=np.int64), (chunks if self.compress else {})
+        return history, fields, np.array(stored, dtype=np.int64), (snaps if self.compress else {})
+
 
 def field_values(rec) -> dict:
     """The stored fields of a step record (solver.rolling.stepping.StepRecord), name -> (ny, nx) array."""

@@ -15,10 +15,11 @@ from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.creep import linear_creep_forces
 
 
-def creep_grid(scene: Scene, travel: float = 0.0) -> Grid:
+def creep_grid(scene: Scene, travel: float = 0.0, trail: float = 0.0) -> Grid:
     """Grid of the rolling frame over the contact plus the scene's margin, lengthened ahead by `travel` (mm) for the
-    world-fixed grid of a transient (cases.scene.extent.rolling_frame_grid)."""
-    return rolling_frame_grid(scene, travel)
+    world-fixed grid of a transient, with at least `trail` (mm) behind the contact for the grid that moves with it
+    (cases.scene.extent.rolling_frame_grid)."""
+    return rolling_frame_grid(scene, travel, trail)
 
 
 def rolling_semi_axes(scene: Scene) -> tuple[float, float] | None:

@@ -38,12 +38,8 @@ from rollcontact.cases.results.lock import OutputLock, lock_path
 from rollcontact.cases.results.outputs import free_name
 from rollcontact.cases.results.run_result import RunInterrupted, RunResult
 from rollcontact.cases.results.subsurface import Subsurface
-from rollcontact.cases.run.bem_run import run_bem
 from rollcontact.cases.run.checkpoint import Checkpoints
-from rollcontact.cases.run.creep_run import run_creep
 from rollcontact.cases.run.fidelity import choose_fidelity
-from rollcontact.cases.run.mdr_run import run_mdr
-from rollcontact.cases.run.step_stresses import StepStresses
 from rollcontact.cases.scene.scene import Scene, stored_name
 
 
@@ -90,7 +86,10 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
         stepped = shakedown and (scene.solver.fidelity == "bem" or (scene.solver.fidelity == "auto"
                                                                     and choose_fidelity(scene).model == "bem"))
         checkpoints = Checkpoints(target, attrs) if stepped else None
-        stepwise = StepStresses(scene, target, depths, restart, progress) if stresses else None
+        stepwise = None
+        if stresses:
+            from rollcontact.cases.run.step_stresses import StepStresses
+            stepwise = StepStresses(scene, target, depths, restart, progress)
         try:
             result = _run_model(scene, progress, restart, checkpoints, stepwise)
         except RunInterrupted as exc:
@@ -118,6 +117,7 @@ def run_scene(scene: Scene, out=None, *, overwrite=False, progress=None, restart
 
 
 def _run_model(scene, progress, restart, checkpoints, stresses) -> RunResult:
+    """The scene's model; each imported when it runs (a process loads only the model it uses)."""
     if scene.wheelrail_on:
         if restart is not None:
             raise InputError(f"{arg('restart')}: a [wheelrail] scene is solved in one run; there is nothing to "
@@ -127,12 +127,15 @@ def _run_model(scene, progress, restart, checkpoints, stresses) -> RunResult:
     if scene.rolling_on:
         if restart is not None:
             raise InputError(f"{arg('restart')}: a [rolling] scene is solved in one run; there is nothing to restart")
+        from rollcontact.cases.run.creep_run import run_creep
         return run_creep(scene, progress=progress)
     choice = choose_fidelity(scene)
     choice.announce()
     if choice.model == "mdr":
+        from rollcontact.cases.run.mdr_run import run_mdr
         result = run_mdr(scene, progress=progress)
     else:
+        from rollcontact.cases.run.bem_run import run_bem
         result = run_bem(scene, progress=progress, restart=restart, checkpoint=checkpoints, stresses=stresses)
     if choice.automatic:
         result.summary.update(choice.summary())

@@ -10,7 +10,8 @@ with the steps computed. A step file is written once, atomically (a temporary fi
 the process in any way it ends, kill -9 included. Folder: `<run file>.subsurface/` (of the file the run writes: its
 output, or the partial file beside a complete one), file `step_<N>.h5`: attributes step, nu and key (a digest of
 the tractions, grid, nu and depths the stresses come from), datasets z (mm) and the nine fields (nz, ny, nx) with one
-gzip chunk per layer. The final write copies those chunks as they are (no second compression) and removes the folder.
+chunk per layer (cases.run.stresses.LAYER_FILTERS). The final write copies those chunks as they are (no second
+compression) and removes the folder; a step file or a source's /subsurface stored with other filters is not copied.
 
 What is never computed twice: a stored step whose file in the folder has the same key (a killed run continued in its
 own file); the steps a restart inherits also take their stresses from the source's folder or from the source file's
@@ -30,10 +31,10 @@ import h5py
 import numpy as np
 
 from rollcontact.bem.subsurface import SubsurfaceStresses
-from rollcontact.cases.results.hdf5 import GZIP_LEVEL
 from rollcontact.cases.results.writing import new_hdf5, replacing, write_failed
 from rollcontact.cases.results.run_result import SUBSURFACE_NAMES
-from rollcontact.cases.run.stresses import create_group, grid_of, layer_fields, run_depths
+from rollcontact.cases.run.stresses import (LAYER_FILTERS, create_group, grid_of, layer_fields, run_depths,
+                                            same_filters, write_layer)
 from rollcontact.cases.scene.scene import Scene
 
 
@@ -86,7 +87,7 @@ class StepStresses:
         """The stresses of the snapshots `recorder` (cases.run.recorder.StepRecorder) stored since the last call."""
         while self._seen < len(recorder.stored):
             i = self._seen
-            self.ensure(recorder.stored[i], *(recorder.fields[n][i] for n in ("p", "tau_x", "tau_y")))
+            self.ensure(recorder.stored[i], *(recorder.field(n, i) for n in ("p", "tau_x", "tau_y")))
             self._seen += 1
 
     def ensure(self, step: int, pressure, tau_x, tau_y):
@@ -138,7 +139,8 @@ class StepStresses:
     def _matches(self, path: Path, key: str) -> bool:
         try:
             with h5py.File(path, "r") as h5:
-                return h5.attrs.get("key") == key and all(name in h5 for name in SUBSURFACE_NAMES)
+                return (h5.attrs.get("key") == key and all(name in h5 for name in SUBSURFACE_NAMES)
+                        and all(same_filters(h5[name]) for name in SUBSURFACE_NAMES))
         except (OSError, KeyError):
             return False
 
@@ -160,7 +162,8 @@ class StepStresses:
         try:
             with h5py.File(self.restart.path, "r") as src:
                 g = src.get("subsurface")
-                if g is None or float(g.attrs["nu"]) != self.nu or not np.array_equal(g["z"][()], self.z):
+                if g is None or float(g.attrs["nu"]) != self.nu or not np.array_equal(g["z"][()], self.z) \
+                        or not all(same_filters(g[name]) for name in SUBSURFACE_NAMES):
                     return False
                 steps = [int(s) for s in g["step"][()]]
                 if step not in steps:
@@ -189,7 +192,7 @@ class StepStresses:
                 values = layer_fields(self._op, float(depth), self._layer)
                 computing += time.perf_counter() - t0
                 for name, layer in values.items():
-                    out[name][j] = layer
+                    write_layer(out[name], (j,), layer)
                 worst = max(worst, float(values["von_mises"].max()))
                 check()            # a failed write stops the step at once (OutputWriteError)
         self.seconds += computing
@@ -214,5 +217,5 @@ class StepStresses:
             h5.attrs.update(step=step, nu=self.nu, key=key)
             h5.create_dataset("z", data=self.z).attrs["units"] = "mm"
             yield {name: h5.create_dataset(name, shape=(len(self.z), ny, nx), dtype=np.float64, chunks=(1, ny, nx),
-                                           compression="gzip", compression_opts=GZIP_LEVEL)
+                                           **LAYER_FILTERS)
                    for name in SUBSURFACE_NAMES}, check

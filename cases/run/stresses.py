@@ -7,8 +7,11 @@ the Hertz maximum of the shear stress (0.48 a), 0.1 a at 2 a.
 
 Writing: the run file is rebuilt in a temporary file beside it (everything but an older /subsurface copied, then
 the new group filled step by step, depth by depth) and renamed over it, under the run file's lock: a reader sees the
-old file or the new one, and a run still writing the file refuses the command. Memory: the stress operator (48 padded
-arrays' worth, 100 MB at 256 x 256) and one depth layer of the nine fields, whatever the count of depths and steps
+old file or the new one, and a run still writing the file refuses the command. Each layer of a field is one chunk,
+stored with HDF5's standard shuffle and deflate filters (LAYER_FILTERS: level 1, which on these dense fields of
+doubles compresses better and about twice as fast as deflate alone at level 4), compressed here and written as it is
+(`write_layer`). Memory: the stress operator (48 padded arrays' worth, 100 MB at 256 x 256), one depth layer of the
+nine fields and the tractions of the chosen steps (read once), whatever the count of depths
 (benchmarks/subsurface.py measures a 256 x 256 x 64 block).
 """
 from __future__ import annotations
@@ -16,6 +19,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 import time
+import zlib
 
 import h5py
 import numpy as np
@@ -24,11 +28,16 @@ from rollcontact.bem.errors import InputError
 from rollcontact.bem.grid import Grid
 from rollcontact.bem.subsurface import COMPONENTS, SubsurfaceStresses, invariants
 from rollcontact.cases.arguments import arg
-from rollcontact.cases.results.hdf5 import GZIP_LEVEL
 from rollcontact.cases.results.writing import new_hdf5, wait_for_replaced
 from rollcontact.cases.results.lock import OutputLock
 from rollcontact.cases.results.run_result import SUBSURFACE_NAMES, UNITS
 from rollcontact.cases.scene.scene import Scene
+
+#: HDF5 filters of every /subsurface layer (one chunk each), here and in the step files of cases.run.step_stresses:
+#: chunks are copied between them as they are, so both use these (`same_filters` checks a file written elsewhere)
+LAYER_FILTERS = dict(shuffle=True, compression="gzip", compression_opts=1)
+#: the tractions of the chosen steps are read once when they take at most this many bytes (else once per depth)
+TRACTION_BYTES = 64 * 2 ** 20
 
 DEFAULT_DEPTH_COUNT = 30
 DEFAULT_DEPTH_EXTENT = 2.0     # deepest default depth, in contact radii a
@@ -178,7 +187,7 @@ def subsurface_in_memory(result, steps=None, depths=None, progress=None, threads
     t0 = time.perf_counter()
     for i, step in enumerate(chosen):
         k = stored.index(step)
-        op.set_tractions(*(np.asarray(result.fields[n])[k] for n in ("p", "tau_x", "tau_y")))
+        op.set_tractions(*(result.fields[n][k] for n in ("p", "tau_x", "tau_y")))
         for j, depth in enumerate(z):
             for name, v in layer_fields(op, float(depth), layer).items():
                 arrays[name][i, j] = v
@@ -196,22 +205,45 @@ def _fill(dst, src, grid, nu, steps, z, default, progress, threads, check) -> fl
     stored = [int(s) for s in src["fields/step"][()]]
     op = SubsurfaceStresses(grid, nu, threads=threads)
     layer = np.empty((6,) + grid.shape)
+
+    def tractions(step):
+        return tuple(src[f"fields/{n}"][stored.index(step)] for n in ("p", "tau_x", "tau_y"))
+    held = None
+    if 3 * len(steps) * layer[0].nbytes <= TRACTION_BYTES:
+        held = {step: tractions(step) for step in steps}
     seconds = 0.0
     for j, depth in enumerate(z):        # depths outside: each depth's kernels are built once for all the steps
+        worst = 0.0
         for i, step in enumerate(steps):
-            k = stored.index(step)
-            p, tx, ty = (src[f"fields/{n}"][k] for n in ("p", "tau_x", "tau_y"))
             t0 = time.perf_counter()
-            op.set_tractions(p, tx, ty)
+            if len(steps) > 1 or j == 0:     # one step: its tractions are transformed once
+                op.set_tractions(*(held[step] if held is not None else tractions(step)))
             values = layer_fields(op, float(depth), layer)
             seconds += time.perf_counter() - t0
             for name, v in values.items():
-                out[name][i, j] = v
+                write_layer(out[name], (i, j), v)
+            worst = max(worst, float(values["von_mises"].max()))
         check()
         if progress:
             progress(f"subsurface stresses: depth {j + 1}/{len(z)} (z = {float(depth):.4g} mm), {len(steps)} "
-                     f"step(s), max von Mises {out['von_mises'][:, j].max():.4g} MPa")
+                     f"step(s), max von Mises {worst:.4g} MPa")
     return seconds
+
+
+def write_layer(dataset, index, values):
+    """Write the (ny, nx) layer `values` as the chunk at `index` (the leading indices) of a dataset created with
+    LAYER_FILTERS: byte-shuffled (HDF5's shuffle filter: the k-th bytes of all values together) and deflated."""
+    values = np.ascontiguousarray(values, dtype=np.float64)
+    shuffled = np.ascontiguousarray(values.view(np.uint8).reshape(-1, values.itemsize).T)
+    dataset.id.write_direct_chunk(tuple(index) + (0, 0), zlib.compress(shuffled, LAYER_FILTERS["compression_opts"]))
+
+
+def same_filters(dataset) -> bool:
+    """True when `dataset` (a layer dataset of another file) stores its chunks with LAYER_FILTERS, so that they can be
+    copied as they are."""
+    return (dataset.shuffle == LAYER_FILTERS["shuffle"] and dataset.compression == LAYER_FILTERS["compression"]
+            and dataset.compression_opts == LAYER_FILTERS["compression_opts"] and not dataset.fletcher32
+            and dataset.scaleoffset is None)
 
 
 def create_group(h5, nu, z, steps, default, shape) -> dict:
@@ -226,7 +258,7 @@ def create_group(h5, nu, z, steps, default, shape) -> dict:
     out = {}
     for name in SUBSURFACE_NAMES:
         out[name] = group.create_dataset(name, shape=(len(steps), len(z), ny, nx), dtype=np.float64,
-                                         chunks=(1, 1, ny, nx), compression="gzip", compression_opts=GZIP_LEVEL)
+                                         chunks=(1, 1, ny, nx), **LAYER_FILTERS)
         out[name].attrs["units"] = UNITS[name]
     return out
 

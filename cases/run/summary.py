@@ -177,7 +177,7 @@ def _format_creep(d: RunResult) -> str:
                      f"F_y = {s['F_y_linear']:.6g} N")
         if s.get("mode") == "transient":
             lines.append(f"after rolling {s['distance']:.6g} mm in {s['steps'] - 1} steps of {s['step']:.6g} mm from "
-                         f"the {s['initial']} state on the world-fixed grid {s['world_grid']} ("
+                         f"the {s['initial']} state on the {s['rolling_grid']}-fixed grid {s['grid_extent']} ("
                          f"{1e3 * s['time_per_step']:.3g} ms per step); the steady state: F_x = {s['F_x_steady']:.6g} "
                          f"N, F_y = {s['F_y_steady']:.6g} N, M_z = {s['M_z_steady']:.6g} N mm"
                          + (f", xi = {s['xi_steady']:.6g}, eta = {s['eta_steady']:.6g}" if s['forces_prescribed']

@@ -44,7 +44,7 @@ class SceneChecks:
         if (ro.Fx is None) != (ro.Fy is None):
             raise SceneError("[rolling] Fx and Fy (N) are prescribed together (both creepages are then solved for); "
                              "give both, or the creepages xi and eta")
-        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", "")):
+        for key, unit in (("distance", " mm"), ("step", " mm"), ("initial", ""), ("grid", "")):
             if getattr(ro, key) is not None and ro.mode != "transient":
                 raise SceneError(f"[rolling] {key} = {getattr(ro, key)!r}{unit} with mode = {ro.mode!r}: {key} "
                                  "applies to mode = 'transient' only")
@@ -105,6 +105,28 @@ class SceneChecks:
             raise SceneError(f"[solver] accuracy = {so.accuracy!r} with fidelity = {so.fidelity!r}: the accuracy is "
                              "what fidelity = 'auto' chooses a model for; set fidelity = 'auto', or remove "
                              "solver.accuracy")
+
+    def _check_transient_grid(self):
+        """[rolling] grid = 'contact' needs a step of whole elements (the grid moves by whole cells) and elastic
+        bodies with Coulomb's friction and no [thermal] (a viscoelastic body's element states, a friction law's memory
+        and the temperatures stay with the material, on the world-fixed grid)."""
+        ro = self.rolling
+        if ro.mode != "transient" or ro.grid != "contact":
+            return
+        if not self._whole_steps():
+            raise SceneError(f"[rolling] grid = 'contact' with step = {ro.step!r} mm = {ro.step / self.spacing[0]:.6g} "
+                             f"elements of dx = {self.spacing[0]!r} mm: the grid that moves with the contact needs a "
+                             "whole number of elements per step; set step = k dx, or grid = 'world'")
+        if self.viscoelastic:
+            keys = [f"materials.visco{i}" for i in (1, 2) if getattr(self.materials, f"visco{i}") == "sls"]
+            raise SceneError(f"[rolling] grid = 'contact' with {', '.join(keys)} = 'sls': a viscoelastic body's "
+                             "element states stay with its material, which the grid moving with the contact leaves "
+                             "behind; set grid = 'world' (the default for viscoelastic bodies)")
+        if self.friction_on or self.thermal_on:
+            section = "[friction] law" if self.friction_on else "[thermal]"
+            raise SceneError(f"[rolling] grid = 'contact' with a {section}: the friction memory and temperatures stay "
+                             "with the material, which the grid moving with the contact leaves behind; set grid = "
+                             "'world' (the default with [friction] or [thermal])")
 
     def _check_consistency(self):
         ld, mo = self.load, self.motion

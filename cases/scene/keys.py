@@ -165,9 +165,9 @@ class Rolling:
     (the sphere) rolls along `direction` over body 2; xi, eta are the longitudinal and lateral rigid slip of body 1
     relative to body 2 per unit rolling distance, phi the spin (1/mm); the forces reported are those on body 1."""
     mode: str = _spec("none", choices=("none", "steady", "transient"),
-                      doc="'steady': the steady state in contact-fixed coordinates; 'transient': stepped on the "
-                          "world-fixed grid from the `initial` state over `distance` in steps of `step`; 'none': "
-                          "no [rolling]")
+                      doc="'steady': the steady state in contact-fixed coordinates; 'transient': stepped from the "
+                          "`initial` state over `distance` in steps of `step` on the grid `grid`; 'none': no "
+                          "[rolling]")
     xi: float | None = _spec(None, -1, 1, doc="longitudinal creepage (0 unless Fx, Fy are given)")
     eta: float | None = _spec(None, -1, 1, doc="lateral creepage (0 unless Fx, Fy are given)")
     phi: float = _spec(0.0, -INF, INF, lo_open=True, hi_open=True, unit="1/mm", doc="spin creepage")
@@ -182,9 +182,16 @@ class Rolling:
                                        "lengths, 8 a; rounded up to whole steps)", modes=("transient",))
     # the upper bound (the contact's half-length a along the rolling direction) is checked by Scene._check_rolling
     step: float | None = _spec(None, 0, INF, lo_open=True, hi_open=True, unit="mm",
-                               doc="transient: rolling step on the world-fixed grid (default: the element size dx; "
+                               doc="transient: rolling step (default: the element size dx; "
                                    "at most the contact's half-length a along the rolling direction)",
                                modes=("transient",))
+    grid: str | None = _spec(None, choices=("contact", "world"),
+                             doc="transient: the grid the steps are solved on, 'contact' (moves with the contact, "
+                                 "x from its centre; the previous step's tractions carried by the step, which must "
+                                 "be a whole number of elements dx) or 'world' (fixed to the substrate, covering the "
+                                 "distance rolled; any step); default 'contact' when the step is whole elements, "
+                                 "else 'world' (docs/creep_rolling.md)",
+                             modes=("transient",))
     initial: str | None = _spec(None, choices=("rest", "cattaneo"),
                                 doc="transient: initial state, 'rest' (Fn alone, zero tangential force; the default) "
                                     "or 'cattaneo' (then the tangential load of one step at rest)",

@@ -203,8 +203,9 @@ class SceneLimits:
             f"use {how}, or a phase that puts the peaks on steps")
 
     def _check_rolling_run(self):
-        """A [rolling] scene: prescribed forces below full sliding, |(Fx, Fy)| < mu Fn, and the world-fixed grid of a
-        transient within the element limit (bem.grid.MAX_ELEMENTS)."""
+        """A [rolling] scene: prescribed forces below full sliding, |(Fx, Fy)| < mu Fn, and the grid of a transient
+        within the element limit (bem.grid.MAX_ELEMENTS): the world-fixed grid over the distance rolled, or the grid
+        that moves with the contact."""
         if not self.rolling_on:
             return
         from rollcontact.bem.errors import InputError
@@ -222,6 +223,13 @@ class SceneLimits:
             return
         step = ro.step if ro.step is not None else self.spacing[0]
         distance = ro.distance if ro.distance is not None else 8.0 * self.rolling_half_length
+        if self.transient_grid == "contact":           # the grid moves with the contact: the distance adds steps only
+            rolling_frame_grid(self, trail=step)
+            if rolling_steps(distance, step) > MAX_STEPS:
+                raise SceneError(f"[rolling] distance = {distance:.6g} mm in steps of {step:.6g} mm: more than "
+                                 f"{MAX_STEPS} steps per run; allowed range is distance <= {MAX_STEPS * step:.6g} mm "
+                                 "at this step")
+            return
         try:
             rolling_frame_grid(self, travel=rolling_steps(distance, step) * step)
         except InputError as exc:

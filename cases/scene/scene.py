@@ -128,6 +128,7 @@ class Scene(SceneChecks, SceneLimits):
         if scene.shape != "file" or run_limits:    # a file profile's size needs its file
             scene._check_finite()
         scene._resolve_resolution()
+        scene._check_transient_grid()
         if scene.shape == "file" and run_limits:
             check_file_coverage(scene)
         if run_limits:
@@ -250,6 +251,28 @@ class Scene(SceneChecks, SceneLimits):
         """Half-length (mm) of the Hertz contact along the [rolling] direction (an ellipse's extent along it)."""
         (sa, sb), t = self.semi_axes, math.radians(self.rolling.direction)
         return math.hypot(sa * math.cos(t), sb * math.sin(t))
+
+    @property
+    def transient_grid(self) -> str | None:
+        """The grid of a [rolling] transient: [rolling] grid, by default 'contact' (moving with the contact) when the
+        step (default dx) is a whole number of elements dx, the bodies are elastic, friction is Coulomb's and there
+        is no [thermal], else 'world' (a viscoelastic body's element states, a friction law's memory and the
+        temperatures stay with the material, on the world grid); None outside a transient."""
+        ro = self.rolling
+        if ro.mode != "transient":
+            return None
+        if ro.grid is not None:
+            return ro.grid
+        material_state = self.viscoelastic or self.friction_on or self.thermal_on
+        return "contact" if self._whole_steps() and not material_state else "world"
+
+    def _whole_steps(self) -> bool:
+        """True when the transient's step is k >= 1 whole elements dx along the rolling direction (within 1e-9, as
+        solver.creep.moving.whole_cells, which the grid moving with the contact needs)."""
+        dx = self.spacing[0]
+        step = self.rolling.step if self.rolling.step is not None else dx
+        k = round(step / dx)
+        return k >= 1 and abs(step / dx - k) <= 1e-9 * max(1.0, step / dx)
 
     @property
     def traction_bound(self) -> str:

@@ -5,7 +5,6 @@ CLI's SIGTERM handler sets (cases.sweep.runner, cases.sweep.limit_search).
 All three pools have the same small interface: submit(fn, *args) -> future, as_completed(futures), stop()
 (cancel and terminate: the unfinished runs are redone on resume), close().
 """
-import multiprocessing
 import os
 import re
 import signal
@@ -57,11 +56,12 @@ class _LocalPool:
 
     def __init__(self, jobs):
         from concurrent.futures import ProcessPoolExecutor
+        import multiprocessing
         methods = multiprocessing.get_all_start_methods()
         ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
         if ctx.get_start_method() == "forkserver":
-            ctx.set_forkserver_preload(["rollcontact.cases.run.scene_run", "rollcontact.cases.sweep.runner",
-                                        "rollcontact.cases.sweep.limit_search"])
+            ctx.set_forkserver_preload(["rollcontact.cases.run.scene_run", "rollcontact.cases.run.bem_run",
+                                        "rollcontact.cases.sweep.runner", "rollcontact.cases.sweep.limit_search"])
         self.executor = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_worker_init,
                                             initargs=(os.getpid(),))
 

@@ -13,13 +13,14 @@ the traction of element I by delta changes dp at I by +delta; downstream, elemen
 change is carried down the row with their traction), elements in slip keep their traction (their dp absorbs
 it), and the first cell out of contact takes the rest.
 """
-import numba
 import numpy as np
+
+from rollcontact.bem.compiled import internal, kernel
 
 EXTERIOR, STICK, SLIP = 0, 1, 2
 
 
-@numba.njit(cache=True)
+@internal
 def local_solve(rx, ry, bx, by, bound):
     """The element's 2x2 problem s = b tau + r (b diagonal, > 0) with Coulomb's law |tau| <= bound.
 
@@ -48,7 +49,7 @@ def local_solve(rx, ry, bx, by, bound):
     return -rx / (bx + lam), -ry / (by + lam), True
 
 
-@numba.njit(cache=True)
+@internal
 def _carry_down(j, i, tau, dp, status, bound, lo):
     """After element (j, i) changed: update the row downstream (x < x_i) as the module docstring says."""
     for ii in range(i - 1, lo - 1, -1):
@@ -67,7 +68,8 @@ def _carry_down(j, i, tau, dp, status, bound, lo):
                 dp[k, j, ii] = tau[k, j, ii] - tau[k, j, ii + 1]
 
 
-@numba.njit(cache=True)
+@kernel("f8(i8, f8[:, :, ::1], f8[:, :, ::1], f8[:, :, ::1], i1[:, ::1], f8[:, ::1], f8[:, :, ::1], f8[::1], "
+        "f8[::1], f8, i8, i8, f8[:, ::1], f8, b1)")
 def row_sweep(j, rigid, tau, dp, status, bound, disp, row_xx, row_yy, inv_dx, lo, hi, dp_start, omega,
               with_flow):
     """Gauss-Seidel over the contact cells of row j, from the trailing edge (lo) to the leading edge (hi - 1), or with

@@ -7,16 +7,20 @@ at its trailing edge. Kalker's convention: tractions on body 1 (MPa), slip of bo
 The rigid slip per unit rolling distance is w = (xi - phi y, eta + phi x); the simplified theory's displacement
 is u = L tau, written here with the rates (w_x / L_x, w_y / L_y) = (kx + kxy y, ky + kyx x) in MPa/mm, so that one
 flexibility (Kalker's weighted L) and three (L1, L2, L3) share the loops.
+
+The kernels are numba functions compiled once per machine (`rollcontact.bem.compiled`), each called with exactly
+its declared signature: float64 arrays C-contiguous, regions int8, scalars Python floats.
 """
 import math
 
-import numba
 import numpy as np
+
+from rollcontact.bem.compiled import internal, kernel
 
 EXTERIOR, STICK, SLIP = 0, 1, 2
 
 
-@numba.njit(cache=True)
+@kernel("void(f8[::1], f8, f8[:, ::1], f8[:, ::1], f8[:, ::1])")
 def row_edges(x, dx, pressure, lead, trail):
     """For every cell in contact (pressure > 0) the x (mm) of the leading and trailing edges of its run of contact
     cells along the row, into lead and trail ((ny, nx); nan outside the contact).
@@ -45,7 +49,7 @@ def row_edges(x, dx, pressure, lead, trail):
                 trail[j, k] = xt
 
 
-@numba.njit(cache=True)
+@internal
 def _edge_offset(p_out, p_in, dx):
     """Distance (mm) from the outermost contact cell's centre to the edge: p^2 extrapolated linearly to zero
     through the outermost (p_out) and the next inner cell (p_in), within (0, dx]; dx / 2 without a rise."""
@@ -55,7 +59,8 @@ def _edge_offset(p_out, p_in, dx):
     return min(max(dx * p_out * p_out / rise, 1e-6 * dx), dx)
 
 
-@numba.njit(cache=True)
+@kernel("void(f8[::1], f8[::1], f8[:, ::1], f8[:, ::1], f8, f8, f8, f8, f8, f8, f8[:, :, ::1], f8[:, :, ::1], "
+        "i1[:, ::1])")
 def steady_rows(x, y, bound, lead, kx, kxy, ky, kyx, lx, ly, tau, slip, region):
     """Steady FASTSIM (Kalker 1982) on every row, from the leading edge to the trailing edge.
 
@@ -95,7 +100,8 @@ def steady_rows(x, y, bound, lead, kx, kxy, ky, kyx, lx, ly, tau, slip, region):
             region[j, i] = SLIP if slipping else STICK
 
 
-@numba.njit(cache=True)
+@kernel("void(f8[::1], f8[::1], f8, f8, f8[:, ::1], f8[:, ::1], b1[:, ::1], f8, f8, f8, f8, f8, f8, "
+        "f8[:, :, ::1], f8[:, :, ::1], i1[:, ::1])")
 def transient_step(x, y, centre, step, bound, lead, entered, kx, kxy, ky, kyx, lx, ly, tau, slip, region):
     """One step of transient FASTSIM on a world-fixed grid: the contact (centre at x = centre, mm) has moved by
     `step` (mm) since the traction `tau` (2, ny, nx; updated in place) was reached. Each cell in contact keeps the
@@ -136,7 +142,7 @@ def transient_step(x, y, centre, step, bound, lead, entered, kx, kxy, ky, kyx, l
             region[j, i] = SLIP if slipping else STICK
 
 
-@numba.njit(cache=True)
+@kernel("void(f8[::1], f8[::1], f8, f8, f8[:, ::1], f8, f8, f8, f8, f8, f8, f8[:, :, ::1], f8[:, :, ::1], i1[:, ::1])")
 def at_rest(x, y, centre, step, bound, kx, kxy, ky, kyx, lx, ly, tau, slip, region):
     """The simplified theory at rest under the rigid slip of one step (a Cattaneo shift, with spin a twist about
     the contact centre): tau = projection of -step (rates at the cell), from zero traction."""
@@ -161,7 +167,7 @@ def at_rest(x, y, centre, step, bound, kx, kxy, ky, kyx, lx, ly, tau, slip, regi
             region[j, i] = SLIP if slipping else STICK
 
 
-@numba.njit(cache=True)
+@internal
 def _project(tx, ty, g):
     """(tx, ty) projected on the disc of radius g: (tau_x, tau_y, outside)."""
     n = math.sqrt(tx * tx + ty * ty)
@@ -171,7 +177,8 @@ def _project(tx, ty, g):
     return tx * f, ty * f, True
 
 
-@numba.njit(cache=True)
+@kernel("void(f8[::1], f8[::1], f8, f8[:, ::1], f8[:, ::1], f8[:, ::1], f8[:, ::1], f8, f8, f8, f8, f8, f8, f8, "
+        "f8[:, :, ::1], f8[:, :, ::1], i1[:, ::1])")
 def fastrip_rows(x, y, dx, bound, pressure, lead, trail, mu, cx, cy, cphi, xi, eta, phi, fast, tau, region):
     """FaStrip (Sichani, Enblom & Berg 2016, re-derived in docs/creep_fidelity.md) on every run of contact cells.
 
@@ -216,7 +223,7 @@ def fastrip_rows(x, y, dx, bound, pressure, lead, trail, mu, cx, cy, cphi, xi, e
                               fast[1, j, k], k == start, k == end, tau, region, j, k)
 
 
-@numba.njit(cache=True)
+@internal
 def _stick_shift(A, B, Phi, half):
     """The shift e (mm) of the strip's stick zone from A^2 + (B + Phi e)^2 = e^2, i.e. (1 - Phi^2) e^2 - 2 B Phi e -
     (A^2 + B^2) = 0: for |Phi| < 1 the non-negative root (0 without creepage); for |Phi| > 1 the smaller positive
@@ -244,7 +251,7 @@ def _stick_shift(A, B, Phi, half):
     return e
 
 
-@numba.njit(cache=True)
+@internal
 def _fastrip_cell(xc, dx, m, half, e, A, B, Phi, muP, g, fx, fy, first, last, tau, region, j, k):
     """The FaStrip traction of one cell (see `fastrip_rows`). A cell whose centre lies in the slip zone slips: mu p
     along the FASTSIM traction. A cell whose centre lies in the stick zone sticks: the strip traction integrated
@@ -280,7 +287,7 @@ def _fastrip_cell(xc, dx, m, half, e, A, B, Phi, muP, g, fx, fy, first, last, ta
     region[j, k] = STICK
 
 
-@numba.njit(cache=True)
+@internal
 def _slip_direction(xs, A, B, Phi, fx, fy):
     """Unit direction of the slip zone's traction: FASTSIM's traction (fx, fy), or without it (no creepage there)
     against the strip's rigid slip (A, B + Phi x')."""
@@ -294,7 +301,7 @@ def _slip_direction(xs, A, B, Phi, fx, fy):
     return 0.0, 0.0
 
 
-@numba.njit(cache=True)
+@internal
 def _semi_ellipse_integral(s, r):
     """Antiderivative of sqrt(r^2 - s^2) in s, clipped to [-r, r]."""
     if r <= 0.0:
@@ -303,7 +310,7 @@ def _semi_ellipse_integral(s, r):
     return 0.5 * (s * math.sqrt(max(r * r - s * s, 0.0)) + r * r * math.asin(s / r))
 
 
-@numba.njit(cache=True)
+@internal
 def _adhesion_integral(s, r):
     """Antiderivative of sqrt((r - s) / (r + s)) in s, clipped to [-r, r]: sqrt(r^2 - s^2) + r asin(s / r)."""
     s = min(max(s, -r), r)

@@ -6,11 +6,11 @@ in mm; the force targets are Fn/(E* ds) and Ft/(G* ds), mm), and one whole step 
 the anchors.  Errors are returned as status codes, not raised.
 """
 import numpy as np
-from numba import njit
+from rollcontact.bem.compiled import kernel
 
 
 # ------------------------------------------------------------------- compiled step (numba, cached)
-@njit(cache=True)
+@kernel("Tuple((f8, i8))(f8[::1], f8, f8)")
 def _approach_kernel(gap, target, d_guess):
     """Numba twin of `approach_for_force` for the gaps g_i (mm); returns (d, n_contact) or (nan, -1).
 
@@ -37,7 +37,7 @@ def _approach_kernel(gap, target, d_guess):
     return np.nan, -1
 
 
-@njit(cache=True)
+@kernel("Tuple((f8, i8))(f8[::1], f8[::1], f8, f8)")
 def _rigid_shift_kernel(v, b, target, U_guess):
     """Numba root of sum clip(U - v_i, -b_i, b_i) = target (all b_i > 0); returns (U, status).
 
@@ -66,7 +66,7 @@ def _rigid_shift_kernel(v, b, target, U_guess):
     return _walk_break_points(v, b, target, lo, flo, hi), 0
 
 
-@njit(cache=True)
+@kernel("Tuple((b1, f8, f8, f8, f8))(f8[::1], f8[::1], f8, f8, f8, f8, f8)")
 def _newton_bracket(v, b, target, cap, U, lo, hi):
     """At most six Newton steps on F(U) = sum clip(U - v_i, -b_i, b_i) = target from U inside the bracket
     (lo, hi) = (min(v - b), max(v + b)), where F(lo) = -cap = -sum b; every iterate shrinks the bracket.
@@ -109,7 +109,7 @@ def _newton_bracket(v, b, target, cap, U, lo, hi):
     return False, U, lo, flo, hi
 
 
-@njit(cache=True)
+@kernel("f8(f8[::1], f8[::1], f8, f8, f8, f8)")
 def _walk_break_points(v, b, target, lo, flo, hi):
     """Exact root of F(U) = target in (lo, hi), F(lo) = flo < target: the break points v_i -+ b_i inside the
     bracket are sorted and F, linear between them, is followed until it reaches the target."""
@@ -142,7 +142,7 @@ def _walk_break_points(v, b, target, lo, flo, hi):
     return hi
 
 
-@njit(cache=True)
+@kernel("Tuple((f8, f8, i8, i8, i8))(f8[::1], f8[::1], f8, f8, f8, f8, f8, f8, f8, f8[::1], f8[::1], f8[::1])")
 def _step_kernel(s, anchor, centre, R, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf, gap_buf):
     """One MDR step of the sphere, gap (s - centre)^2/R (in gap_buf), in place on `anchor`: `_step_gap_kernel`."""
     for i in range(s.size):
@@ -150,7 +150,7 @@ def _step_kernel(s, anchor, centre, R, target_n, d_guess, ratio, target_t, U_gue
     return _step_gap_kernel(gap_buf, anchor, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf)
 
 
-@njit(cache=True)
+@kernel("Tuple((f8, f8, i8, i8, i8))(f8[::1], f8[::1], f8, f8, f8, f8, f8, f8[::1], f8[::1])")
 def _step_gap_kernel(gap, anchor, target_n, d_guess, ratio, target_t, U_guess, v_buf, b_buf):
     """One MDR step for the gaps g_i (mm) of the springs in place on `anchor`; returns (d, U, n_contact,
     n_stick, status).

@@ -6,11 +6,11 @@ truncation of negative pressures (`_step`), the exact influence-column correctio
 (`_add_columns`), and the deformed gap with the CG residual and the entering elements
 (`_residual_and_entries`). Units: p in MPa, u, h, d, e in mm, influence coefficients in mm/MPa.
 """
-import numba
+from rollcontact.bem.compiled import kernel
 
 # --- numba kernels (flat, contiguous float64 arrays; one pass each) ----------------------------------
 
-@numba.njit(cache=True)
+@kernel("f8(f8[::1], f8[::1], f8[::1], f8[::1], f8, b1[::1], b1)")
 def _direction(z, r, r_prev, v, rz_old, active, deflate):
     """The projected preconditioned residual and the new search direction, in place. Returns r.z.
 
@@ -57,7 +57,7 @@ def _direction(z, r, r_prev, v, rz_old, active, deflate):
     return rz
 
 
-@numba.njit(cache=True)
+@kernel("Tuple((i8, f8, f8, f8))(f8[::1], f8[::1], f8[::1], f8[::1], f8[::1], b1[::1], i8[::1], f8[::1])")
 def _step(p, u, v, q, r, active, trunc_index, trunc_value):
     """Step alpha = (r.v)/(v.q) along v (alpha = 0 if v.q <= 0, i.e. v = 0: the residual vanishes on C):
     p <- max(0, p + alpha v) on C, u <- u + alpha q everywhere.
@@ -96,7 +96,7 @@ def _step(p, u, v, q, r, active, trunc_index, trunc_value):
     return ntrunc, psum, dp2, p2
 
 
-@numba.njit(cache=True)
+@kernel("void(f8[::1], f8[:, ::1], i8, i8[::1], f8[::1], i8)")
 def _add_columns(u, kernel, nx, index, value, count):
     """u[j, i] += sum_t value_t K[(j - j_t) mod Py, (i - i_t) mod Px]: exact A^zz times a sparse field.
 
@@ -119,8 +119,8 @@ def _add_columns(u, kernel, nx, index, value, count):
                 u[base + i] += val * krow[i - it]
 
 
-@numba.njit(cache=True)
-def _residual_and_entries(u, h_eff, approach, active, r, deflate, admit=True):
+@kernel("Tuple((f8, i8, f8, f8))(f8[::1], f8[::1], f8, b1[::1], f8[::1], b1, b1)")
+def _residual_and_entries(u, h_eff, approach, active, r, deflate, admit):
     """Deformed gap e = u + h_eff - d and the CG residual r = -e on C (after C is updated).
 
     In force mode (deflate) d = mean_C (u + h_eff) is returned; otherwise d is the given approach.

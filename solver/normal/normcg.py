@@ -347,7 +347,7 @@ class _NormCG:
         self.r, self.r_prev = self.r_prev, self.r
         f["r"], f["r_prev"] = f["r_prev"], f["r"]
         self.d, entered, emax, umax = _residual_and_entries(f["u"], f["h"], self.target, f["active"], f["r"],
-                                                            self.deflate)
+                                                            self.deflate, True)
         return entered, emax, umax
 
 

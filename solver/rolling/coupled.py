@@ -26,7 +26,7 @@ from rollcontact.solver.tangential.shift import TangentialParams, solve_tangenti
 def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction, *, mu,
                        normal_params=NormalParams(), tangential_params=TangentialParams(),
                        coupling_tol=1e-8, max_outer=50, pressure_guess=None, shift=None, extra_slip=None,
-                       extra_displacement=None, initial_traction=None, initial_region=None):
+                       extra_displacement=None, initial_traction=None, initial_region=None, normal=None):
     """Solve one load step of the coupled normal/tangential problem.
 
     Parameters
@@ -56,6 +56,9 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
         the last iterate of a friction law's iteration (solver.friction.transient). Only the start changes.
     initial_region : (ny, nx) int8, the stick/slip division of the solve that gave `initial_traction`
         (solve_tangential's `previous_region`: its slip elements start on the new bound).
+    normal : a NormalResult of this profile and Fn solved before, taken as the normal solution (uncoupled materials
+        without an extra_displacement only, whose normal problem depends on the gap and Fn alone; ignored when
+        coupled; InputError with an extra_displacement).
 
     Returns (NormalResult, TangentialResult, outer_iterations): the results of the last outer iteration,
     with `iterations` the products of every outer iteration summed (the cost of the step; the last outer
@@ -81,8 +84,12 @@ def solve_coupled_step(op, profile, Fn, F, previous_pressure, previous_traction,
     given = None if extra_slip is None else np.asarray(extra_slip, dtype=float)
     given_normal = None if extra_displacement is None else np.asarray(extra_displacement, dtype=float)
     if not op.coupled:
-        normal = solve_normal(op, profile, force=Fn, initial=initial_p, extra_displacement=given_normal,
-                              params=normal_params)
+        if normal is None:
+            normal = solve_normal(op, profile, force=Fn, initial=initial_p, extra_displacement=given_normal,
+                                  params=normal_params)
+        elif given_normal is not None:
+            raise InputError("solve_coupled_step: a normal solution given with an extra_displacement (its normal "
+                             "problem depends on it)")
         tang = solve_tangential(op, mu * normal.pressure, tau_prev, force=F, shift=shift, extra_slip=given,
                                 initial=initial_traction, previous_region=initial_region, params=tangential_params)
         if given is not None:

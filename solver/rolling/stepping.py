@@ -5,6 +5,8 @@ One step n, as in docs/theory.md §6.2 (Kalker 1990; CONTACT's nested iteration)
     1. h_n = the undeformed profile shifted to the current sphere centre c_n (seed Eq. 7, any direction);
     2. normal problem with Fn (constant, or the step's Fn of an oscillating load), warm-started from p_{n-1}
                                                                             -> p_n, approach d_n;
+       for uncoupled elastic materials it depends on h_n and Fn alone, and a centre and Fn met before (the sphere
+       comes back to the same positions every period) take the solution found then (`run_path`);
     3. bound g = mu p_n; tangential shift problem with the force F_n and the previous traction
        tau_{n-1} as memory                                                  -> tau_n, dU_n; U_n = U_{n-1} + dU_n;
     4. coupled materials only: repeat 2-3 with the coupling terms until both settle (solver.rolling.coupled).
@@ -32,10 +34,13 @@ import numpy as np
 
 from rollcontact.bem.errors import ContactEdgeError, InputError
 from rollcontact.solver.rolling.coupled import solve_coupled_step
-from rollcontact.solver.normal.normcg import NormalParams, NormalResult
+from rollcontact.solver.normal.normcg import NormalParams, NormalResult, solve_normal
 from rollcontact.solver.rolling.energy import frictional_work
 from rollcontact.solver.rolling.schedule import LoadOscillation, check_schedule
 from rollcontact.solver.tangential.shift import TangentialParams, TangentialResult
+
+#: largest memory (bytes: the gaps and pressures) of the normal solutions a path keeps for the centres it comes back to
+NORMAL_MEMO_BYTES = 64 * 2 ** 20
 
 
 @dataclass(frozen=True)
@@ -225,6 +230,14 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
     not with `memory` (InputError). Raises ContactEdgeError if
     the contact reaches the edge of the grid, GrossSlidingError if the force exceeds mu Fn, ConvergenceError if a
     solver fails.
+
+    For uncoupled elastic materials (op.coupled False, no memory) the normal problem of a step is the frictionless
+    contact of the gap h_n under Fn, whatever the tractions and the history: its solution is kept by the exact bytes of h_n and Fn (at most
+    NORMAL_MEMO_BYTES), and a step with the same gap and force takes it instead of solving again (its
+    NormalResult's `iterations` 0). An oscillating path comes back to the same centres every period (the paper's
+    scenes: 13 distinct centres in 242 steps), so its normal problems are solved in the first period only. A restart
+    (`state`) first solves the normal problems of the steps before it as the run it continues did, so that it
+    continues that run to round-off.
     """
     if not (Fn > 0):
         raise InputError(f"load.Fn = {Fn} N: must be > 0")
@@ -238,6 +251,13 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
     X, Y = op.grid.mesh()
     grid = op.grid
     state = StepState.initial(grid.shape) if state is None else state
+    known = None if (op.coupled or memory is not None) else _KnownNormals(op, params.normal)
+    if known is not None and state.step >= 0:
+        # a restart: the normal solutions of the steps before it, as the run that stored it had them
+        pressure = np.zeros(grid.shape)
+        for m in range(state.step + 1):
+            guess = None if m == 0 else _moved(pressure, path.centres[m] - path.centres[m - 1], grid)
+            pressure = known.solution(profile(X, Y, path.centres[m]), _force(path, Fn, m), pressure, guess).pressure
     for n in range(state.step + 1, path.n_steps):
         t0 = time.perf_counter()
         centre = path.centres[n]
@@ -250,21 +270,22 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
             move = centre - path.centres[state.step]
             cells = (round(move[1] / grid.dy), round(move[0] / grid.dx))
             guess = shifted_field(state.pressure, *cells)
-        Fn_n = Fn if path.normal_forces is None else path.normal_forces[n]
+        Fn_n = _force(path, Fn, n)
+        normal = None if known is None else known.solution(h, Fn_n, state.pressure, guess)
         if friction is None:
             extra_n, extra_t = (None, None) if memory is None else memory.terms()
             normal, tangential, outer = solve_coupled_step(
                 op, h, Fn_n, path.forces[n], state.pressure, state.traction, mu=mu,
                 normal_params=params.normal, tangential_params=params.tangential,
                 coupling_tol=params.coupling_tol, max_outer=params.max_outer, pressure_guess=guess,
-                extra_slip=extra_t, extra_displacement=extra_n)
+                extra_slip=extra_t, extra_displacement=extra_n, normal=normal)
             local = None
         else:
             normal, tangential, outer, local = friction.step(
-                lambda m, last, accuracy, previous=state, h=h, F=path.forces[n], Fn_n=Fn_n, guess=guess:
+                lambda m, last, accuracy, previous=state, h=h, F=path.forces[n], Fn_n=Fn_n, guess=guess, known=normal:
                 solve_coupled_step(op, h, Fn_n, F, previous.pressure, previous.traction, mu=m,
                                    normal_params=params.normal, tangential_params=params.loosened(accuracy),
-                                   coupling_tol=params.coupling_tol, max_outer=params.max_outer,
+                                   coupling_tol=params.coupling_tol, max_outer=params.max_outer, normal=known,
                                    **last.warm_start(guess)),
                 op=op, dt=path.step_time, previous_mu=state.mu, moved=cells)
         check_contact_inside(normal.contact, n, centre)
@@ -279,6 +300,40 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
         work = frictional_work(tangential.traction, tangential.slip, grid.cell_area)
         yield StepRecord(n, centre, normal, tangential, state, outer, time.perf_counter() - t0, work, viscous, states,
                          local)
+
+
+def _force(path, Fn, n) -> float:
+    """The normal force of step n (N): the path's, or the constant Fn."""
+    return Fn if path.normal_forces is None else float(path.normal_forces[n])
+
+
+def _moved(pressure, move, grid):
+    """The pressure translated by the centre's move (mm) rounded to whole cells (None for no whole cell)."""
+    return shifted_field(pressure, round(move[1] / grid.dy), round(move[0] / grid.dx))
+
+
+class _KnownNormals:
+    """Uncoupled materials: the normal solutions of the gaps and forces met along a path (`run_path`), by the exact
+    bytes of the gap and the force, up to NORMAL_MEMO_BYTES."""
+
+    def __init__(self, op, params):
+        self.op, self.params, self.solved, self.held = op, params, {}, 0
+
+    def solution(self, h, fn, previous, guess):
+        """The NormalResult of gap h (mm) under fn (N): the one found before (its `iterations` 0), or solved from
+        `guess` (or the previous pressure, as solve_coupled_step starts it) and kept."""
+        key = (fn, np.ascontiguousarray(h, dtype=float).tobytes())
+        normal = self.solved.get(key)
+        if normal is not None:
+            return normal
+        initial = previous if np.any(previous) else None
+        if guess is not None and np.any(guess):
+            initial = guess
+        normal = solve_normal(self.op, h, force=fn, initial=initial, params=self.params)
+        if self.held + 2 * len(key[1]) <= NORMAL_MEMO_BYTES:
+            self.solved[key] = replace(normal, iterations=0)
+            self.held += 2 * len(key[1])
+        return normal
 
 
 def shifted_field(field, rows, cols):

@@ -5,9 +5,9 @@ of `solver.tangential._tangcg`; conventions and notation in `solver.tangential._
 shift fit in the same pass; `gram_and_fit` recomputes the fit after `release` returned slip elements whose
 slip points along their traction to stick. Tractions and bounds MPa, displacements and slips mm.
 """
-import numba as nb
+from rollcontact.bem.compiled import inline, kernel
 
-from rollcontact.solver.tangential._common import _jit, _mag
+from rollcontact.solver.tangential._common import _mag
 
 
 #: |tau| >= (1 - ON_BOUND) g counts as "on the bound" (slip). Renormalised and clipped elements sit
@@ -15,7 +15,7 @@ from rollcontact.solver.tangential._common import _jit, _mag
 ON_BOUND = 1e-12
 
 
-@nb.njit(cache=True, inline="always")
+@inline
 def _gram_terms(slip, nxv, nyv, wx, wy):
     """One element's terms of the shift fit (see `gram_and_fit`): (Gxx, Gxy, Gyy, bx, by) increments.
 
@@ -29,7 +29,7 @@ def _gram_terms(slip, nxv, nyv, wx, wy):
     return tx * tx, tx * ty, ty * ty, tx * ws, ty * ws
 
 
-@nb.njit(cache=True, inline="always")
+@inline
 def _add_gram_terms(sums, slip, nxv, nyv, wx, wy):
     """sums (Gxx, Gxy, Gyy, bx, by) plus one element's terms (`_gram_terms`)."""
     a, b, c, d, e = _gram_terms(slip, nxv, nyv, wx, wy)
@@ -40,7 +40,8 @@ def _add_gram_terms(sums, slip, nxv, nyv, wx, wy):
 _NO_TERMS = (0.0, 0.0, 0.0, 0.0, 0.0)
 
 
-@_jit
+@kernel("Tuple((i8, i8, f8, f8, f8, f8, f8))(f8[:, :, ::1], f8[:, ::1], i1[:, ::1], f8[:, :, ::1], f8[:, :, "
+        "::1], f8[:, :, ::1], f8[:, :, ::1], b1, f8[:, :, ::1])")
 def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
     """Division and shift fit of the current iterate, in one pass.
 
@@ -84,7 +85,7 @@ def classify(tau, g, region, nrm, u, u_prev, extra, has_extra, w):
     return n_stick, n_slip, gxx, gxy, gyy, bx, by
 
 
-@_jit
+@kernel("UniTuple(f8, 5)(f8[:, :, ::1], i1[:, ::1], f8[:, :, ::1])")
 def gram_and_fit(nrm, region, w):
     """Least-squares shift fit: returns (Gxx, Gxy, Gyy, bx, by).
 
@@ -103,7 +104,7 @@ def gram_and_fit(nrm, region, w):
     return sums
 
 
-@_jit
+@kernel("i8(f8[:, :, ::1], i1[:, ::1], f8[:, :, ::1], f8, f8, f8)")
 def release(nrm, region, w, dux, duy, tol_abs):
     """Slip elements whose slip points along the traction (s.n > tol_abs) return to stick."""
     ny, nx = region.shape

@@ -12,7 +12,8 @@ import math
 import numpy as np
 
 from rollcontact.bem.errors import ConvergenceError, InputError
-from rollcontact.solver.tangential._common import _jit, _mag
+from rollcontact.bem.compiled import kernel
+from rollcontact.solver.tangential._common import _mag
 from rollcontact.solver.tangential._division import ON_BOUND
 from rollcontact.solver.tangential._moves import restore_force as _kernel_restore_force
 
@@ -25,7 +26,7 @@ def project_discs(tau, g):
     force_projection_eval(tau, g, 0.0, 0.0, tau, _NO_RING)  # element by element, so in place is safe
 
 
-@_jit
+@kernel("UniTuple(f8, 6)(f8[:, :, ::1], f8[:, ::1], f8, f8, f8[:, :, ::1], i1[:, ::1])")
 def force_projection_eval(y, g, lx, ly, tau_out, region):
     """tau_out = proj(y + lambda); returns (sum tau_x, sum tau_y, J_xx, J_xy, J_yy, psi).
 

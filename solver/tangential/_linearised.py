@@ -4,12 +4,12 @@ stopping measure, the curvature operator P (A v) + kappa v and the vector operat
 
 Tractions MPa, displacements and slips mm, curvature kappa mm/MPa.
 """
-import numba as nb
+from rollcontact.bem.compiled import inline, kernel
 
-from rollcontact.solver.tangential._common import _jit, _mag
+from rollcontact.solver.tangential._common import _mag
 
 
-@nb.njit(cache=True, inline="always")
+@inline
 def _a_tt(nrm, axx, ayy, j, i):
     """Self coefficient along the slip tangent t = (-n_y, n_x): t^T diag(a_xx, a_yy) t. The same as
     `_preconditioner.a_tt`, kept here because numba's cache is invalidated per file: an inlined function from
@@ -17,7 +17,8 @@ def _a_tt(nrm, axx, ayy, j, i):
     return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
 
 
-@_jit
+@kernel("UniTuple(f8, 3)(f8[:, :, ::1], f8[:, ::1], i1[:, ::1], f8[:, :, ::1], f8, f8, f8[:, :, ::1], f8[:, "
+        "::1], f8[:, :, ::1], f8, f8)")
 def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy):
     """Projected residual res = -P s (stick: -s; slip: -t (t.s)), curvature kappa = -s.n/g in slip.
 
@@ -75,7 +76,7 @@ def residual(nrm, g, region, w, dux, duy, res, kappa, slip, axx, ayy):
     return rmax, snmax, rstop
 
 
-@_jit
+@kernel("void(f8[:, :, ::1], f8[:, :, ::1], f8)")
 def conjugate(z, v, gamma):
     """v <- z + gamma v (in place)."""
     ny = z.shape[1]
@@ -86,7 +87,8 @@ def conjugate(z, v, gamma):
                 v[c, j, i] = z[c, j, i] + gamma * v[c, j, i]
 
 
-@_jit
+@kernel("UniTuple(f8, 2)(f8[:, :, ::1], i1[:, ::1], f8[:, ::1], f8[:, :, ::1], f8[:, :, ::1], f8[:, :, ::1], "
+        "f8[:, :, ::1])")
 def curvature_product(nrm, region, kappa, v, av, q, res):
     """q = P (A v) + kappa v (linearised slip-area operator applied to v); returns (v.q, res.v)."""
     ny, nx = region.shape
@@ -113,7 +115,7 @@ def curvature_product(nrm, region, kappa, v, av, q, res):
     return vq, rv
 
 
-@_jit
+@kernel("f8(f8[:, :, ::1], f8[:, :, ::1])")
 def dot(a, b):
     s = 0.0
     for c in range(a.shape[0]):

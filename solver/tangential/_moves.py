@@ -7,12 +7,12 @@ notation in `solver.tangential._common`.
 Tractions and bounds MPa, displacements and slips mm, forces as sums of tractions over the elements
 (MPa x elements).
 """
-import numba as nb
+from rollcontact.bem.compiled import inline, kernel
 
-from rollcontact.solver.tangential._common import _jit, _mag
+from rollcontact.solver.tangential._common import _mag
 
 
-@nb.njit(cache=True, inline="always")
+@inline
 def _reversed_large(tau, nrm, g, region, w, dux, duy, big, j, i):
     """(turn?, sx, sy, |s|) of element (j, i): a slip element whose slip s = w - dU points along its traction
     (s.n > 0) and exceeds big g."""
@@ -24,7 +24,8 @@ def _reversed_large(tau, nrm, g, region, w, dux, duy, big, j, i):
     return sx * nrm[0, j, i] + sy * nrm[1, j, i] > 0.0 and m > big * g[j, i], sx, sy, m
 
 
-@_jit
+@kernel("Tuple((i8, f8, f8))(f8[:, :, ::1], f8[:, :, ::1], f8[:, ::1], i1[:, ::1], f8[:, :, ::1], f8, f8, "
+        "f8, f8[:, :, ::1])")
 def flip_direction(tau, nrm, g, region, w, dux, duy, big, d):
     """d <- the change that turns each slip element whose slip points along its traction and is large
     (s.n > 0, |s| > big g, big in mm/MPa) to oppose its slip: d = -g s/|s| - tau there, 0 elsewhere.
@@ -54,7 +55,7 @@ def flip_direction(tau, nrm, g, region, w, dux, duy, big, d):
     return n, cx, cy
 
 
-@_jit
+@kernel("void(f8[:, :, ::1], i1[:, ::1], f8, f8)")
 def shift_stick(d, region, cx, cy):
     """d += (cx, cy) on the stick elements (the force-neutral part of a flip direction)."""
     ny, nx = region.shape
@@ -65,7 +66,7 @@ def shift_stick(d, region, cx, cy):
                 d[1, j, i] += cy
 
 
-@_jit
+@kernel("i8(f8[:, :, ::1], f8[:, :, ::1], f8, f8[:, :, ::1], f8[:, :, ::1], b1, f8[:, ::1], i1[:, ::1], f8, f8)")
 def apply_flip(tau, d, t, u, ad, exact, g, region, axx, ayy):
     """tau += t d for a flip direction from `flip_direction` (+ `shift_stick`); u += t A d (ad = A d) if exact,
     else u += t diag(a_xx, a_yy) d (self coefficients, the caller re-synchronises).
@@ -113,7 +114,8 @@ def apply_flip(tau, d, t, u, ad, exact, g, region, axx, ayy):
     return n_proj
 
 
-@_jit
+@kernel("Tuple((i8, f8, f8, f8, i8))(f8[:, :, ::1], f8[:, :, ::1], f8, f8[:, :, ::1], f8[:, :, ::1], f8[:, "
+        "::1], i1[:, ::1], f8, f8, f8)")
 def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
     """tau += alpha v, u += alpha A v, then back onto the discs.
 
@@ -181,7 +183,7 @@ def step(tau, v, alpha, u, av, g, region, axx, ayy, max_turn):
     return n_clip, dmax, fx, fy, n_stick
 
 
-@_jit
+@kernel("i8(f8[:, :, ::1], i1[:, ::1], f8[:, ::1], f8, f8, f8[:, :, ::1], f8, f8, f8, f8, f8, i8)")
 def restore_force(tau, region, g, fx, fy, u, axx, ayy, tol_abs, sx, sy, n_stick):
     """Put the total force back on (fx, fy) (MPa x elements) by uniform shifts of the stick tractions.
 

@@ -32,8 +32,9 @@ unchanged.
 """
 import math
 
-import numba as nb
 import numpy as np
+
+from rollcontact.bem.compiled import inline, kernel
 
 # LEVELS, BLEND (and _P, _N) are compile-time constants of the cached numba kernels: change them here, in the
 # source (which invalidates the cache), not by patching the module at run time. MIN_CONTACT_ELEMENTS is read
@@ -51,17 +52,15 @@ MIN_CONTACT_ELEMENTS = 16000
 _P = tuple(math.log1p(x) for x in LEVELS)
 _N = len(LEVELS)
 
-_jit = nb.njit(cache=True, nogil=True, fastmath=False)
 
-
-@nb.njit(cache=True, inline="always")
+@inline
 def a_tt(nrm, axx, ayy, j, i):
     """Self coefficient along the slip tangent t = (-n_y, n_x) of element (j, i): t^T diag(a_xx, a_yy) t
     (a copy, `_linearised._a_tt`, lives there: numba's cache is per file)."""
     return axx * nrm[1, j, i] * nrm[1, j, i] + ayy * nrm[0, j, i] * nrm[0, j, i]
 
 
-@nb.njit(cache=True, inline="always")
+@inline
 def _weight(rho, level):
     """Weight w_level of an element with rho = kappa/a_tt (level _N is the diagonal); the weights sum to 1."""
     p = math.log1p(rho)
@@ -84,7 +83,7 @@ def _weight(rho, level):
 PLAIN, TWO_TERM, SHIFTED = 0, 1, 2
 
 
-@nb.njit(cache=True, inline="always")
+@inline
 def _slip_weights(nrm, kappa, axx, ayy, j, i, mode, level):
     """(W_level, D) of slip element (j, i) in the given form (W is the factor applied on both sides of M_level)."""
     if mode == PLAIN:
@@ -97,7 +96,7 @@ def _slip_weights(nrm, kappa, axx, ayy, j, i, mode, level):
     return math.sqrt(_weight(rho, level)), _weight(rho, _N) / (att + kk)
 
 
-@_jit
+@kernel("void(f8[:, :, ::1], i1[:, ::1], f8[:, ::1], f8, f8, f8[:, :, ::1], i8, i8, f8[:, :, ::1])")
 def inputs(nrm, region, kappa, axx, ayy, res, mode, level, out):
     """out = W_level res (res is already P r: tangential in slip; W = 1 in stick for level 0, else 0)."""
     ny, nx = region.shape
@@ -113,7 +112,8 @@ def inputs(nrm, region, kappa, axx, ayy, res, mode, level, out):
             out[1, j, i] = wt * res[1, j, i]
 
 
-@_jit
+@kernel("UniTuple(f8, 2)(f8[:, :, ::1], i1[:, ::1], f8[:, ::1], f8, f8, f8[:, :, ::1], i8, f8[:, :, ::1], "
+        "f8[:, :, :, ::1], b1, f8, f8, f8, f8[:, :, ::1])")
 def combine(nrm, region, kappa, axx, ayy, res, mode, z, bufs, deflate, gxx, gxy, gyy, q_prev):
     """z <- Pi (sum_l W_l P M_l P W_l res + D res) from the levels' outputs (level 0 in z, level l >= 1 in
     bufs[l - 1], used in the SHIFTED form only); returns (res.z, z.q_prev), the preconditioned residual norm and

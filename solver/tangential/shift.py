@@ -63,6 +63,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rollcontact.bem import compiled
 from rollcontact.bem.errors import GrossSlidingError, InputError
 from rollcontact.solver.memo import ProductMemo, same
 from rollcontact.solver.tangential import _force_projection as FP, _moves
@@ -318,12 +319,15 @@ def _finish(it, extra_slip, dA, residual):
 
 
 def kernels_cached() -> bool:
-    """True when numba's on-disk cache already holds the solver's compiled kernels; False on the first run
-    after an install (or with an empty NUMBA_CACHE_DIR), when compiling them takes about 10 s (2-core AMD EPYC)
-    before the first step. Reads numba's cache location through its dispatcher; if that ever changes, it
-    answers True (no message)."""
+    """True when the solver's kernels are compiled for this machine (`rollcontact.bem.compiled`); False on the first
+    run after an install or a change of the kernels, when building them takes about half a minute (2-core AMD EPYC)
+    before the first step. With numba's JIT (ROLLCONTACT_KERNELS=jit, or no C compiler) it reads numba's cache
+    location through a dispatcher; if that ever changes, it answers True (no message)."""
+    ready = compiled.ready("rollcontact.solver")
+    if ready is not None:
+        return ready
     try:
         cache_dir = Path(_moves.step._cache.cache_path)
         return any(cache_dir.glob("_moves.step-*.nbi"))
-    except Exception:  # numba internals moved: say nothing rather than fail a run
+    except Exception:  # numba internals moved, or the JIT not loaded yet: say nothing rather than fail a run
         return True

@@ -134,6 +134,28 @@ def test_fft_layer_equals_direct_sum_of_element_kernels():
         assert np.abs(op.layer(z) - direct).max() <= 1e-13 * np.abs(direct).max()
 
 
+@pytest.mark.parametrize("z", [0.0, 0.07, 1.3])
+def test_wrapped_kernels_equal_the_element_kernels_at_every_offset(z):
+    """The padded kernels are evaluated on the quadrant ox, oy >= 0 and mirrored by each kernel's parity (a stress
+    component changes sign once per index along the mirrored axis, a shear load's response once more): at every
+    offset of all four quadrants they equal the element kernels evaluated there directly, to the round-off of the
+    four-corner difference (which cancels digits at depths large against the element: measured 4e-13 of the largest
+    at z = 1.3 mm, 5e-15 at 0.07 mm; 1e-12 asserted), and the padding stays zero."""
+    from rollcontact.bem.subsurface import KERNELS, PARITY_X, PARITY_Y, _wrapped_kernels
+    nx, ny, dx, dy = 6, 4, 0.3, 0.2
+    py, px = 10, 14
+    out = np.zeros((15, py, px))
+    _wrapped_kernels(nx, ny, dx, dy, z, NU, PARITY_X, PARITY_Y, out)
+    ox, oy = np.meshgrid(np.arange(-(nx - 1), nx), np.arange(-(ny - 1), ny))
+    direct = {load: element_stresses(ox * dx, oy * dy, z, dx, dy, NU, load) for load in ("p", "q_x", "q_y")}
+    for k, (load, component) in enumerate(KERNELS):
+        want = direct[load][component]
+        assert np.abs(out[k][oy % py, ox % px] - want).max() <= 1e-12 * np.abs(want).max()
+    inside = np.zeros((py, px), bool)
+    inside[oy % py, ox % px] = True
+    assert not out[:, ~inside].any()
+
+
 def test_surface_layer_returns_the_applied_tractions():
     """At z = 0 the traction on the surface is the applied one: s_zz = -p, s_xz = -tau_x, s_yz = -tau_y (1e-14)."""
     g = Grid(9, 8, 0.2, 0.25)

@@ -168,7 +168,8 @@ def test_transient_scene_rolls_on_the_world_grid_towards_the_steady_state(tmp_pa
     within 0.5 % of the steady state computed beside it (the issue's bound; measured -0.26 % for F_x, -0.06 % for F_y,
     the deficit decaying by about 6x per contact length); the default output stores the initial state, each contact
     length and the last step on the world grid."""
-    scene = rolling_scene('xi = 2e-4\neta = 1e-4\n[grid]\nmargin = 0.1').with_overrides(['rolling.mode="transient"'])
+    scene = rolling_scene('xi = 2e-4\neta = 1e-4\n[grid]\nmargin = 0.1').with_overrides(['rolling.mode="transient"',
+                                                                                       'rolling.grid="world"'])
     result = run_scene(scene, tmp_path / "transient.h5")
     back = read_run(result.path)
     s, h = back.summary, back.history
@@ -181,7 +182,7 @@ def test_transient_scene_rolls_on_the_world_grid_towards_the_steady_state(tmp_pa
     assert back.x[0] - scene.grid.dx / 2 <= -s["a"] - margin + 1e-12 and back.x[-1] + scene.grid.dx / 2 >= \
         s["distance"] + s["a"] + margin - 1e-12
     assert back.x[-1] - back.x[0] < s["distance"] + 2 * (s["a"] + margin) + scene.grid.dx   # no longer than needed
-    assert f"{back.x.size} x {back.y.size}" in s["world_grid"]
+    assert f"{back.x.size} x {back.y.size}" in s["grid_extent"] and s["rolling_grid"] == "world"
     assert np.all(np.diff(h["F_x"]) > -1e-9 * h["F_x"][-1])
     assert s["F_x"] == pytest.approx(s["F_x_steady"], rel=5e-3)
     assert s["F_y"] == pytest.approx(s["F_y_steady"], rel=5e-3)

@@ -10,7 +10,7 @@ import rollcontact
 from rollcontact.bem.errors import InputError, SceneError
 from rollcontact.cases.cli.main import main
 from rollcontact.cases.results.hdf5 import read_run, write_run
-from rollcontact.cases.scene.limits import PEAK_MISS
+from rollcontact.cases.scene.limits import MAX_STEPS, PEAK_MISS
 from rollcontact.cases.scene.scene import Scene, default_scene, shipped_scene_path
 from rollcontact.cases.sweep.runner import run_sweep
 
@@ -58,15 +58,26 @@ def test_rolling_forces_at_full_sliding_are_refused_before_the_run():
 
 
 def test_a_transient_beyond_the_grid_limit_is_refused_with_the_longest_distance(tmp_path, capsys):
+    """On the world-fixed grid the distance rolled is bounded by the element limit, on the grid moving with the
+    contact by the step limit; both refused before any work, naming the longest distance."""
     out = tmp_path / "t.h5"
     assert main(["run", str(CREEP), "-q", "--set", 'rolling.mode="transient"', "--set", "rolling.distance=1e9",
                  "-o", str(out)]) == 2
     err = capsys.readouterr().err
+    assert "[rolling] distance = 1e+09 mm in steps of" in err and f"more than {MAX_STEPS} steps per run" in err
+    longest = float(err.split("allowed range is distance <= ")[1].split(" mm")[0])
+    rollcontact.load_scene(CREEP, {"rolling.mode": "transient", "rolling.distance": longest * (1 - 1e-6)})
+    with pytest.raises(SceneError):
+        rollcontact.load_scene(CREEP, {"rolling.mode": "transient", "rolling.distance": longest * 1.01})
+    assert main(["run", str(CREEP), "-q", "--set", 'rolling.mode="transient"', "--set", "rolling.distance=1e9",
+                 "--set", 'rolling.grid="world"', "-o", str(out)]) == 2
+    err = capsys.readouterr().err
     assert "[rolling] distance = 1e+09 mm: the world-fixed grid of the transient would exceed the element limit" in err
     longest = float(err.split("allowed range is distance <= ")[1].split(" mm")[0])
-    rollcontact.load_scene(CREEP, {"rolling.mode": "transient", "rolling.distance": longest})
+    world = {"rolling.mode": "transient", "rolling.grid": "world"}
+    rollcontact.load_scene(CREEP, {**world, "rolling.distance": longest})
     with pytest.raises(SceneError):
-        rollcontact.load_scene(CREEP, {"rolling.mode": "transient", "rolling.distance": longest + 0.25})
+        rollcontact.load_scene(CREEP, {**world, "rolling.distance": longest + 0.25})
     assert not out.exists()
 
 

@@ -170,3 +170,28 @@ def test_an_interrupted_run_writes_the_stresses_of_every_step_it_said_it_wrote(t
         computed = [int(s) for s in h5["subsurface/step"][()]]
         stored = [int(s) for s in h5["fields/step"][()]]
     assert announced == computed[:4] and set(computed) <= set(stored) and not folder_of(out).exists()
+
+
+def test_stresses_stored_with_other_filters_are_computed_again_not_copied(tmp_path):
+    """Layer chunks are copied between files as they are (the step files, a restart's source), so only from a file
+    that stores them with the same filters (cases.run.stresses.LAYER_FILTERS): a source whose /subsurface was written
+    with deflate alone (as an older rollcontact did) has its inherited steps' stresses computed again, and the result
+    is what `stresses --all-steps` computes, bit for bit."""
+    source = tmp_path / "source.h5"
+    first = rollcontact.run(rollcontact.load_scene(overrides={**COARSE, "motion.periods": 1}), source, stresses=True,
+                            depths=[0, 0.5, 1.5, 4])
+    with h5py.File(source, "a") as h5:
+        g = h5["subsurface"]
+        for name in [n for n in g if n not in ("z", "step")]:
+            values, units = g[name][()], g[name].attrs["units"]
+            del g[name]
+            g.create_dataset(name, data=values, chunks=(1, 1) + values.shape[2:], compression="gzip",
+                             compression_opts=4).attrs["units"] = units
+    step = int(first.field_steps[-1])
+    out = tmp_path / "continued.h5"
+    done = rollcontact.restart(source, step=step, output=out, overrides={"motion.periods": 2}, stresses=True,
+                               depths=[0, 0.5, 1.5, 4])
+    inherited = [int(s) for s in done.field_steps if s <= step]
+    assert done.status == "complete" and inherited and done.subsurface.reused == []
+    assert set(inherited) <= set(done.subsurface.computed)
+    assert_same_as_computed_afterwards(out, tmp_path, depths=[0, 0.5, 1.5, 4])
