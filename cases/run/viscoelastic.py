@@ -21,7 +21,6 @@ from rollcontact.bem.errors import InputError
 from rollcontact.cases.scene.scene import Scene
 from rollcontact.solver.visco.memory import ViscoMemory
 from rollcontact.solver.visco.sls import effective_pair
-from rollcontact.solver.visco.steady import SteadyVisco
 
 #: mm N / s per W
 MILLI = 1e-3
@@ -42,8 +41,9 @@ def scene_memory(scene: Scene, op) -> ViscoMemory | None:
     return ViscoMemory(op, scene.sls_bodies, scene.step_time)
 
 
-def steady_visco(scene: Scene, grid) -> SteadyVisco:
+def steady_visco(scene: Scene, grid):
     """The steady viscoelastic operator and problems of a [rolling] steady scene on its contact-fixed grid."""
+    from rollcontact.solver.visco.steady import SteadyVisco
     coupling = {"auto": "auto", "on": True, "off": False}[scene.solver.coupling]
     return SteadyVisco(grid, *scene.bodies, scene.speed, coupling=coupling, threads=scene.solver.threads)
 
@@ -59,7 +59,7 @@ def pressure_centroid(grid, pressure, centre=(0.0, 0.0), direction=(1.0, 0.0)) -
     return float((arm * p).sum() / total)
 
 
-def steady_outputs(visco: SteadyVisco, grid, pressure, traction_on_substrate, force) -> dict:
+def steady_outputs(visco, grid, pressure, traction_on_substrate, force) -> dict:
     """Summary values of a steady viscoelastic state: pressure_centroid_x (mm), rolling_resistance_moment (N mm),
     viscous_power (W)."""
     xc = pressure_centroid(grid, pressure)

@@ -9,16 +9,24 @@ contact temperatures (docs/theory.md §12.1-12.2; docs/friction.md).
     steady      steady rolling with a law
     thermal     the frictional heat, its partition between the bodies and their surface temperatures
 
-Units: mm, N, MPa, s, mm/s, W, degC.
+The names below are imported on first use (a run without a law loads none of the steady solver). Units: mm, N,
+MPa, s, mm/s, W, degC.
 """
-from rollcontact.solver.friction.iteration import Consistent, FrictionParams, consistent_coefficient
-from rollcontact.solver.friction.laws import KINDS, VELOCITY_KINDS, FrictionLaw
-from rollcontact.solver.friction.memory import FrictionMemory
-from rollcontact.solver.friction.model import FrictionState, LocalFriction
-from rollcontact.solver.friction.steady import solve_steady_friction, upwind_self_coefficient
-from rollcontact.solver.friction.thermal import ContactTemperature, Temperatures, frictional_flux
-from rollcontact.solver.friction.transient import friction_step
+from importlib import import_module
 
-__all__ = ["Consistent", "FrictionParams", "consistent_coefficient", "KINDS", "VELOCITY_KINDS", "FrictionLaw",
-           "FrictionMemory", "FrictionState", "LocalFriction", "solve_steady_friction", "upwind_self_coefficient",
-           "ContactTemperature", "Temperatures", "frictional_flux", "friction_step"]
+_WHERE = {"Consistent": "iteration", "FrictionParams": "iteration", "consistent_coefficient": "iteration",
+          "KINDS": "laws", "VELOCITY_KINDS": "laws", "FrictionLaw": "laws", "FrictionMemory": "memory",
+          "FrictionState": "model", "LocalFriction": "model", "solve_steady_friction": "steady",
+          "upwind_self_coefficient": "steady", "ContactTemperature": "thermal", "Temperatures": "thermal",
+          "frictional_flux": "thermal", "friction_step": "transient"}
+__all__ = list(_WHERE)
+
+
+def __getattr__(name):
+    if name in _WHERE:
+        return getattr(import_module(f"{__name__}.{_WHERE[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_WHERE))
