@@ -3,7 +3,7 @@
 A citation is `docs/theory.md §N`, `§N.M` (continued as `§N.M, §K`, `§N.M-N.K`) or a pitfall `Pn`; each must name an
 anchor of docs/theory.md (`<a id="s5.4">`, `<a id="P10">`). A section sign that is not headed by `docs/theory.md`
 must belong to another named source (the seed paper, Johnson 1985, Kalker 1990, CONTACT's user guide, ...); a
-pitfall number `Pn` is always headed by `docs/theory.md`. Background notes outside the repository (`../shared`,
+pitfall number `Pn` is always headed by `docs/theory.md`. Background notes outside the repository (a folder beside it,
 "theory notes") are never cited.
 """
 import os
