@@ -144,7 +144,7 @@ def grid_response(x, y, hx, hy, c) -> np.ndarray:
     u, w = _panels(np.array(edges))
     ex = _erf_difference((x[:, None] + hx) / u + 0.5 * c * u, (x[:, None] - hx) / u + 0.5 * c * u, erfc)
     ey = _erf_difference((y[:, None] + hy) / u, (y[:, None] - hy) / u, erfc)
-    G = (ey * w) @ ex.T
+    G = np.einsum("yu,xu->yx", ey * w, ex)     # numpy's own loops: BLAS would spin a thread per core here
     own = (np.abs(x)[None, :] < hx) & (y[:, None] < hy)        # the element under the point: 4 u_cut below u_cut
     G += np.where(own, 4.0 * u_cut, 0.0)
     if c * edges[-1] < 15.0:                                   # the far field beyond the last panel
