@@ -121,10 +121,12 @@ RESUME_AFTER = 4
 #: iterate is solved much more accurately than its coefficient is known, and near the iteration's tolerance the solves
 #: go below theirs (down to a tenth, StepParams.loosened), so that their noise does not hold the residual above it.
 INEXACT = 1e-2
-#: The ratio of an iterate's residual to the one before that is assumed until the iteration has shown its own: an
-#: iterate whose residual times the ratio is within the tolerance is solved to the full tolerance at once (its
-#: solution is then final when it converges, without a confirming solve).
-FIRST_RATE = 1e-2
+#: An iterate whose residual times the expected ratio of the next residual to it is within the tolerance is solved to
+#: the full tolerance at once (its solution is then final when it converges, without a confirming solve). The ratio
+#: expected is the last one observed; before the iteration has shown one (and after a residual that grew) the largest
+#: feedback J of the iterate (the coupling between elements that the element-wise Newton step leaves out is of its
+#: order), at least RATE_FLOOR.
+RATE_FLOOR = 1e-3
 
 
 def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: FrictionParams, regime,
@@ -146,7 +148,7 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     CoefficientUpdate (elements at the stick/slip boundary that swap between stick and slip
     are damped until they settle). The early solves are inexact, the last ones below the solver's tolerance (INEXACT):
     the first asks for the expected residual of mu0 (its answer is off by about that much through its coefficients
-    anyway), the one whose iterate is expected to converge (FIRST_RATE, then the last ratio of residuals) for the
+    anyway), the one whose iterate is expected to converge (RATE_FLOOR) for the
     full tolerance; an iterate that converges after a looser solve is confirmed by a solve to the full tolerance. A
     solve that finds the force beyond the capacity of the current coefficients (GrossSlidingError) is retried from
     halfway back to the last coefficients that carried it; if the law's own coefficients cannot carry it either,
@@ -157,7 +159,7 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     J = np.zeros_like(mu)
     history = []          # (g, f) of earlier iterates: the Newton step's result g and its change f = g - mu
     troubles, falling = (0 if ANDERSON_DEPTH > 0 else ACCELERATION_TROUBLES), 0
-    rate, first = FIRST_RATE, None   # the expected ratio of the next residual to the last; the first residual
+    rate, first = 1.0, None     # the expected ratio of the next residual to the last; the first residual
     for k in range(1, params.max_iter + 1):
         if math.isfinite(update.residual):
             accuracy = INEXACT * update.residual
@@ -188,7 +190,8 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
             # where nothing presses (weight 0) the coefficient bounds nothing: it is the law's (the memory state)
             return Consistent(np.where(weight > 0, mu, T), solution, k, update.residual, J, first)
         grew = update.residual >= previous
-        rate = update.residual / previous if math.isfinite(previous) and not grew else FIRST_RATE
+        rate = (update.residual / previous if math.isfinite(previous) and not grew
+                else max(float(np.max(J, initial=0.0)), RATE_FLOOR))
         troubles, falling = (troubles + 1, 0) if grew else (troubles, falling + 1)
         if troubles >= ACCELERATION_TROUBLES and falling >= RESUME_AFTER and update.settled(mu, T, weight):
             troubles = 0             # the relaxed steps have settled the swapping elements: accelerate again
