@@ -118,7 +118,9 @@ def _bound_weight(tang, p, T):
     the solution does not depend on the coefficient it was solved with (the same traction meets the conditions of
     the problem with bound T p), so that coefficient needs no further solve: it is taken as the law's."""
     weight = p / max(float(p.max()), 1e-300)
-    inside = (tang.region == 1) & (np.hypot(tang.traction[0], tang.traction[1]) <= T * p)
+    tx, ty = tang.traction
+    bound = T * p
+    inside = (tang.region == 1) & (tx * tx + ty * ty <= bound * bound)
     return np.where(inside, 0.0, weight)
 
 
