@@ -13,6 +13,7 @@ import os
 from pathlib import Path
 
 os.environ.setdefault("ROLLCONTACT_KERNEL_CHECKS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")      # as the rollcontact command runs (cases.cli.main)
 
 
 def pytest_configure(config):

@@ -205,7 +205,12 @@ def console_main():
     (benchmarks/startup.py), 10-15 % of a paper scene's process, with nothing
     left to do: the run file is closed and renamed into place, stdout and stderr are flushed here, and `run` starts
     no other process or thread that needs a clean-up. The other commands (sweeps with their worker pools and Dask
-    clients, plots) exit normally."""
+    clients, plots) exit normally.
+
+    BLAS runs on one thread unless the environment says otherwise (OPENBLAS_NUM_THREADS, set before numpy loads): the
+    dense products of rollcontact are small (the FFTs carry the work, on `[solver] threads`), and OpenBLAS's thread
+    pool costs a process 0.08 s of CPU at numpy's import and spins a second core in small products."""
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     code = main()
     if sys.argv[1:2] == ["run"]:
         try:
