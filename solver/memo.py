@@ -4,7 +4,9 @@ A rolling step hands the previous step's converged traction back as the memory t
 may start from the previous pressure), so the product A tau' that the previous solve already carried is
 free when the field is bit-for-bit a stored one. The carried products are updated incrementally by the
 solvers (u += alpha A v, exact in exact arithmetic) and drift by round-off only; after `max_reuses` reuses
-an entry is not offered again, so the product is then recomputed by FFT.
+an entry is not offered again, so the product is then recomputed by FFT. The entries are kept most recently used
+first: a field looked up again and again (the memory tau' of every solve of a friction law's iteration within one
+step) stays while the solves' own results come and go.
 """
 import weakref
 
@@ -26,7 +28,7 @@ def same(a, b) -> bool:
 
 
 class ProductMemo:
-    """Per operator, up to `size` (field, product, reuses) entries, newest first."""
+    """Per operator, up to `size` (field, product, reuses) entries, the most recently stored or found first."""
 
     def __init__(self, size=1, max_reuses=32):
         self.size = size
@@ -34,9 +36,13 @@ class ProductMemo:
         self._entries = weakref.WeakKeyDictionary()
 
     def lookup(self, op, field):
-        """(product, reuses + 1) if `field` equals a stored field that may still be reused, else (None, 0)."""
-        for stored, product, reuses in self._entries.get(op, ()):
+        """(product, reuses + 1) if `field` equals a stored field that may still be reused (the entry then moves to
+        the front), else (None, 0)."""
+        entries = self._entries.get(op, [])
+        for k, (stored, product, reuses) in enumerate(entries):
             if reuses < self.max_reuses and same(stored, field):
+                if k:
+                    entries.insert(0, entries.pop(k))
                 return product, reuses + 1
         return None, 0
 

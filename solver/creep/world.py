@@ -169,7 +169,8 @@ def roll_world(op, profile, *, Fn, mu, distance, step, xi=0.0, eta=0.0, phi=0.0,
                     max_outer=params.max_outer, **last.warm_start(guess), **kw),
                 op=op, dt=step / friction.speed if friction.speed else None,
                 previous_mu=None if previous is None else previous.friction.mu,
-                moved=(0, 0) if previous is None else (0, round((centre - previous.centre) / grid.dx)))
+                moved=(0, 0) if previous is None else (0, round((centre - previous.centre) / grid.dx)),
+                previous_residual=None if previous is None else previous.friction.first_residual)
         check_contact_inside(normal.contact, k, (centre, 0.0))
         viscous = 0.0
         if memory is not None:

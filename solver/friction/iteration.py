@@ -47,13 +47,15 @@ class FrictionParams:
 @dataclass
 class Consistent:
     """The outcome: the coefficient field used by the last solve (consistent with the law within tol), that solve's
-    solution, the solves done, the last residual (relative to mu_static) and each element's feedback J."""
+    solution, the solves done, the last residual (relative to mu_static), each element's feedback J and the residual
+    of the first iterate (how far the first coefficient field was from consistent; relative to mu_static)."""
 
     mu: np.ndarray
     solution: object
     iterations: int
     residual: float
     feedback: np.ndarray
+    first_residual: float = 0.0
 
 
 class CoefficientUpdate:
@@ -119,15 +121,24 @@ RESUME_AFTER = 4
 #: iterate is solved much more accurately than its coefficient is known, and near the iteration's tolerance the solves
 #: go below theirs (down to a tenth, StepParams.loosened), so that their noise does not hold the residual above it.
 INEXACT = 1e-2
+#: An iterate whose residual times the expected ratio of the next residual to it is within the tolerance is solved to
+#: the full tolerance at once (its solution is then final when it converges, without a confirming solve). The ratio
+#: expected is the last one observed; before the iteration has shown one (and after a residual that grew) the largest
+#: feedback J of the iterate (the coupling between elements that the element-wise Newton step leaves out is of its
+#: order), at least RATE_FLOOR.
+RATE_FLOOR = 1e-3
 
 
-def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: FrictionParams, regime) -> Consistent:
+def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: FrictionParams, regime,
+                           expected_residual=None) -> Consistent:
     """Iterate mu until the law's coefficient of the solution is mu (module docstring).
 
     solve(mu, accuracy) -> solution (accuracy: a relative tolerance the solve may stop at, looser than its own, or
     None); target(solution, mu) -> (T, J, weight) arrays of mu's shape (weight: p / p_max, CoefficientUpdate.observe);
     mu0 the first coefficient field; bounds = (lowest, highest) coefficient the law can give (iterates are kept inside);
-    regime(J) -> str for the error message.
+    regime(J) -> str for the error message. expected_residual: the residual mu0 is expected to have (relative to
+    mu_static; e.g. the first residual of the previous step's iteration, where the coefficient field changes little
+    from step to step), None or <= tol when mu0 is expected to be consistent.
 
     While the residual falls, the element-wise Newton steps are combined by Anderson's acceleration over the last
     ANDERSON_DEPTH iterates (Walker & Ni 2011: the coupling between neighbouring slipping elements, which the
@@ -135,7 +146,10 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     grew, and after ACCELERATION_TROUBLES of them until RESUME_AFTER relaxed iterates in a row have lowered it and the
     elements that matter are no longer damped (CoefficientUpdate.settled), the step is the relaxed one of
     CoefficientUpdate (elements at the stick/slip boundary that swap between stick and slip
-    are damped until they settle). The early solves are inexact, the last ones below the solver's tolerance (INEXACT). A
+    are damped until they settle). The early solves are inexact, the last ones below the solver's tolerance (INEXACT):
+    the first asks for the expected residual of mu0 (its answer is off by about that much through its coefficients
+    anyway), the one whose iterate is expected to converge (RATE_FLOOR) for the
+    full tolerance; an iterate that converges after a looser solve is confirmed by a solve to the full tolerance. A
     solve that finds the force beyond the capacity of the current coefficients (GrossSlidingError) is retried from
     halfway back to the last coefficients that carried it; if the law's own coefficients cannot carry it either,
     that GrossSlidingError is raised."""
@@ -145,8 +159,15 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
     J = np.zeros_like(mu)
     history = []          # (g, f) of earlier iterates: the Newton step's result g and its change f = g - mu
     troubles, falling = (0 if ANDERSON_DEPTH > 0 else ACCELERATION_TROUBLES), 0
+    rate, first = 1.0, None     # the expected ratio of the next residual to the last; the first residual
     for k in range(1, params.max_iter + 1):
-        accuracy = None if not math.isfinite(update.residual) else INEXACT * update.residual
+        if math.isfinite(update.residual):
+            accuracy = INEXACT * update.residual
+            if update.residual * rate <= params.tol:
+                accuracy = min(accuracy, params.tol)          # expected to be the last solve
+        else:
+            accuracy = expected_residual if expected_residual is not None and expected_residual > params.tol \
+                else None
         try:
             solution = solve(mu, accuracy)
         except GrossSlidingError:
@@ -160,13 +181,17 @@ def consistent_coefficient(solve, target, mu0, *, mu_static, bounds, params: Fri
         carried = mu.copy()
         T, J, weight = target(solution, mu)
         previous = update.residual
-        if update.observe(mu, T, weight):
+        converged = update.observe(mu, T, weight)
+        first = update.residual if first is None else first
+        if converged:
             if accuracy is not None and accuracy > params.tol:
                 update.residual = params.tol / INEXACT     # confirm with a solve to the full tolerance
                 continue
             # where nothing presses (weight 0) the coefficient bounds nothing: it is the law's (the memory state)
-            return Consistent(np.where(weight > 0, mu, T), solution, k, update.residual, J)
+            return Consistent(np.where(weight > 0, mu, T), solution, k, update.residual, J, first)
         grew = update.residual >= previous
+        rate = (update.residual / previous if math.isfinite(previous) and not grew
+                else max(float(np.max(J, initial=0.0)), RATE_FLOOR))
         troubles, falling = (troubles + 1, 0) if grew else (troubles, falling + 1)
         if troubles >= ACCELERATION_TROUBLES and falling >= RESUME_AFTER and update.settled(mu, T, weight):
             troubles = 0             # the relaxed steps have settled the swapping elements: accelerate again

@@ -52,6 +52,8 @@ class FrictionMemory:
     def step(self, previous, law_value, s, dt) -> np.ndarray:
         """mu at the end of a step of dt (s) from `previous` with the law's value `law_value` at slip velocity s
         (module docstring)."""
+        if not self.active:
+            return np.asarray(law_value, dtype=float)
         E = self.decay(s, dt)
         return law_value + (np.asarray(previous, dtype=float) - law_value) * E
 

@@ -42,14 +42,15 @@ class LocalFriction:
     def mu_static(self) -> float:
         return self.law.mu_static
 
-    def step(self, solve, *, op, dt, previous_mu, moved=(0, 0)):
+    def step(self, solve, *, op, dt, previous_mu, moved=(0, 0), previous_residual=None):
         """One step of a stepped run with this law (solver.friction.transient.friction_step) on the grid of `op`
         (bem.HalfSpaceOperator: its self-coefficients are the elements' own feedback): (normal, tangential, outer,
-        FrictionState). moved: (rows, cols), the contact's move since the previous step in whole cells."""
+        FrictionState). moved: (rows, cols), the contact's move since the previous step in whole cells.
+        previous_residual: the previous step's FrictionState.first_residual (None: unknown)."""
         from rollcontact.solver.friction.transient import friction_step
         a = 0.5 * (op.self_coefficients["xx"] + op.self_coefficients["yy"])
         return friction_step(self, solve, grid=op.grid, dt=dt, previous_mu=previous_mu, self_coefficient=a,
-                             thermal=self.thermal, moved=moved)
+                             thermal=self.thermal, moved=moved, previous_residual=previous_residual)
 
     @property
     def bounds(self) -> tuple[float, float]:
@@ -77,3 +78,5 @@ class FrictionState:
     temperatures: object | None = None
     feedback: float = 0.0     # the steepest fall of the law times the element's own slip per unit bound, at the
                               # largest pressure: >= 1 where the quasi-static problem may have several solutions
+    first_residual: float = 0.0   # the residual of the iteration's first iterate (relative to mu_static): how far the
+                                  # step's first coefficient field was from consistent (0: not iterated)

@@ -41,7 +41,7 @@ class LastSolve:
 
 
 def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self_coefficient, thermal=None,
-                  moved=(0, 0)):
+                  moved=(0, 0), previous_residual=None):
     """Solve one step consistently with the law: (normal, tangential, outer, FrictionState).
 
     solve(mu, last, accuracy) -> (NormalResult, TangentialResult, outer iterations): the step's contact solve on
@@ -53,7 +53,10 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
     tangential influence (mm/MPa). thermal: a solver.friction.thermal.ContactTemperature on the grid (temperatures;
     needed by the temperature law). moved: (rows, cols), the contact's move since the previous step in whole cells:
     without memory the coefficient field moves with the slip pattern, and the first iterate is the previous one
-    moved along (with memory the coefficient belongs to the material, which stays)."""
+    moved along (with memory the coefficient belongs to the material, which stays). previous_residual: the residual of
+    the previous step's first iterate (its FrictionState.first_residual; None: unknown), the one this step's first
+    coefficient field is expected to have: its first solve asks for no more accuracy than that
+    (solver.friction.iteration.consistent_coefficient)."""
     law, memory = friction.law, friction.memory
     shape = grid.shape
     mu_static = law.mu_static
@@ -93,7 +96,8 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
         start = previous
     where = f"slip velocity over a step of {dt:.6g} s" if dt else "no speed"
     done = consistent_coefficient(run, target, start, mu_static=mu_static, bounds=friction.bounds,
-                                  params=friction.params, regime=lambda J: feedback_regime(law, J, where))
+                                  params=friction.params, regime=lambda J: feedback_regime(law, J, where),
+                                  expected_residual=previous_residual)
     normal, tang, outer = done.solution
     # the cost of the step: the products of every solve of the iteration
     normal = replace(normal, iterations=last.normal_products)
@@ -103,7 +107,8 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
     temps = thermal.solve(flux, normal.contact) if thermal is not None else None
     # the uniqueness indicator: the steepest fall of the law against the stiffest element's own slip per bound
     feedback = law.steepest_slope() * self_coefficient * float(normal.pressure.max()) / dt if dt else 0.0
-    state = FrictionState(done.mu, s, done.iterations, float(flux.sum()) * grid.cell_area, temps, feedback)
+    state = FrictionState(done.mu, s, done.iterations, float(flux.sum()) * grid.cell_area, temps, feedback,
+                          done.first_residual)
     return normal, tang, outer, state
 
 
@@ -113,7 +118,9 @@ def _bound_weight(tang, p, T):
     the solution does not depend on the coefficient it was solved with (the same traction meets the conditions of
     the problem with bound T p), so that coefficient needs no further solve: it is taken as the law's."""
     weight = p / max(float(p.max()), 1e-300)
-    inside = (tang.region == 1) & (np.hypot(tang.traction[0], tang.traction[1]) <= T * p)
+    tx, ty = tang.traction
+    bound = T * p
+    inside = (tang.region == 1) & (tx * tx + ty * ty <= bound * bound)
     return np.where(inside, 0.0, weight)
 
 

@@ -258,6 +258,7 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
         for m in range(state.step + 1):
             guess = None if m == 0 else _moved(pressure, path.centres[m] - path.centres[m - 1], grid)
             pressure = known.solution(profile(X, Y, path.centres[m]), _force(path, Fn, m), pressure, guess).pressure
+    local = None
     for n in range(state.step + 1, path.n_steps):
         t0 = time.perf_counter()
         centre = path.centres[n]
@@ -287,7 +288,8 @@ def run_path(op, profile, path: LoadPath, *, Fn, mu, params: StepParams = StepPa
                                    normal_params=params.normal, tangential_params=params.loosened(accuracy),
                                    coupling_tol=params.coupling_tol, max_outer=params.max_outer, normal=known,
                                    **last.warm_start(guess)),
-                op=op, dt=path.step_time, previous_mu=state.mu, moved=cells)
+                op=op, dt=path.step_time, previous_mu=state.mu, moved=cells,
+                previous_residual=None if local is None else local.first_residual)
         check_contact_inside(normal.contact, n, centre)
         viscous, states = 0.0, None
         if memory is not None:
