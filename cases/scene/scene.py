@@ -256,14 +256,15 @@ class Scene(SceneChecks, SceneLimits):
     def transient_grid(self) -> str | None:
         """The grid of a [rolling] transient: [rolling] grid, by default 'contact' (moving with the contact) when the
         step (default dx) is a whole number of elements dx, the bodies are elastic, friction is Coulomb's and there
-        is no [thermal], else 'world' (a viscoelastic body's element states, a friction law's memory and the
-        temperatures stay with the material, on the world grid); None outside a transient."""
+        is no [thermal] and the model is not FASTSIM, else 'world' (a viscoelastic body's element states, a friction
+        law's memory, the temperatures and FASTSIM's strips stay with the material, on the world grid); None outside a
+        transient."""
         ro = self.rolling
         if ro.mode != "transient":
             return None
         if ro.grid is not None:
             return ro.grid
-        material_state = self.viscoelastic or self.friction_on or self.thermal_on
+        material_state = self.viscoelastic or self.friction_on or self.thermal_on or self.solver.fidelity == "fastsim"
         return "contact" if self._whole_steps() and not material_state else "world"
 
     def _whole_steps(self) -> bool:

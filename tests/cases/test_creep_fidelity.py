@@ -186,3 +186,13 @@ def test_hertz_bound_needs_a_hertzian_contact_rolling_along_an_axis():
                              'xi = 1e-4\ndirection = 30.0\n[solver]\nfidelity = "fastsim"\n'
                              'traction_bound = "ellipsoid"\n')
 
+
+
+def test_a_fastsim_transient_rolls_on_the_world_grid_and_refuses_the_moving_one():
+    """FASTSIM's transient steps the world-fixed grid (its strips carry their state with the material): that is the
+    default grid of a FASTSIM transient, and an explicit grid = 'contact' is refused, naming both keys."""
+    from rollcontact.cases.scene.scene import shipped_scene_path
+    transient = {"rolling.mode": "transient", "solver.fidelity": "fastsim"}
+    assert api.load_scene(shipped_scene_path("creep_steady.toml"), overrides=transient).transient_grid == "world"
+    with pytest.raises(SceneError, match=r"\[rolling\] grid = 'contact' with \[solver\] fidelity = 'fastsim'"):
+        api.load_scene(shipped_scene_path("creep_steady.toml"), overrides=dict(transient, **{"rolling.grid": "contact"}))
