@@ -194,10 +194,6 @@ class SceneChecks:
             raise SceneError(f"{' and '.join(given)} with [wheelrail]: friction laws and surface temperatures are not "
                              "supported in wheel-rail scenes (each patch takes load.mu); remove "
                              f"{' and '.join(given)}")
-        if self.solver.fidelity == "fastsim":
-            raise SceneError("[rolling] grid = 'contact' with [solver] fidelity = 'fastsim': FASTSIM's transient "
-                             "steps the world-fixed grid (its strips carry their state along the material); set "
-                             "grid = 'world' or leave grid out")
         if self.viscoelastic:
             keys = [f"materials.visco{i}" for i in (1, 2) if getattr(self.materials, f"visco{i}") == "sls"]
             raise SceneError(f"{' and '.join(given)} with {', '.join(keys)} = 'sls': friction laws and surface "

@@ -248,7 +248,7 @@ def test_an_interrupted_run_without_stored_fields_can_still_be_restarted(tmp_pat
     """output.fields = 'none' stores no snapshots, but a run that stops early keeps the fields of its last step
     (what a restart continues from), as its checkpoints do."""
     out = tmp_path / "nofields.h5"
-    proc = subprocess.Popen([ROLLCONTACT, "run", "-o", str(out), *COARSE, "--set", "motion.periods=200",
+    proc = subprocess.Popen([ROLLCONTACT, "run", "-o", str(out), *COARSE, "--set", "motion.periods=2000",
                              "--set", "output.fields=none"], cwd=tmp_path, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     for line in proc.stderr:
