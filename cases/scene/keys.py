@@ -189,8 +189,9 @@ class Rolling:
                              doc="transient: the grid the steps are solved on, 'contact' (moves with the contact, "
                                  "x from its centre; the previous step's tractions carried by the step, which must "
                                  "be a whole number of elements dx) or 'world' (fixed to the substrate, covering the "
-                                 "distance rolled; any step); default 'contact' when the step is whole elements, "
-                                 "else 'world' (docs/creep_rolling.md)",
+                                 "distance rolled; any step); default 'contact' when the step is whole elements "
+                                 "and nothing stays with the material (no viscoelastic body, friction law, "
+                                 "[thermal] or FASTSIM), else 'world' (docs/creep_rolling.md)",
                              modes=("transient",))
     initial: str | None = _spec(None, choices=("rest", "cattaneo"),
                                 doc="transient: initial state, 'rest' (Fn alone, zero tangential force; the default) "
