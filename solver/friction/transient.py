@@ -16,6 +16,7 @@ import numpy as np
 from rollcontact.solver.friction.iteration import consistent_coefficient, feedback_regime
 from rollcontact.solver.friction.model import FrictionState, LocalFriction
 from rollcontact.solver.friction.thermal import frictional_flux
+from rollcontact.solver.rolling.stepping import shifted_field
 
 
 class LastSolve:
@@ -91,7 +92,7 @@ def friction_step(friction: LocalFriction, solve, *, grid, dt, previous_mu, self
     if law.kind == "coulomb":
         start = np.full(shape, law.mu)
     elif not memory.active and tuple(moved) != (0, 0):
-        start = mu_static + _shifted(previous - mu_static, *moved)
+        start = mu_static + shifted_field(previous - mu_static, *moved)
     else:
         start = previous
     where = f"slip velocity over a step of {dt:.6g} s" if dt else "no speed"
@@ -122,13 +123,3 @@ def _bound_weight(tang, p, T):
     bound = T * p
     inside = (tang.region == 1) & (tx * tx + ty * ty <= bound * bound)
     return np.where(inside, 0.0, weight)
-
-
-def _shifted(field, rows, cols):
-    """field translated by (rows, cols) whole cells, zero-filled where it enters."""
-    ny, nx = field.shape
-    out = np.zeros_like(field)
-    if abs(rows) < ny and abs(cols) < nx:
-        out[max(rows, 0):ny + min(rows, 0), max(cols, 0):nx + min(cols, 0)] = \
-            field[max(-rows, 0):ny + min(-rows, 0), max(-cols, 0):nx + min(-cols, 0)]
-    return out
